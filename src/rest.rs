@@ -1,0 +1,140 @@
+//! When a spring counts as settled: thresholds in the user's units.
+//!
+//! In the spirit of Android's `DynamicAnimation` "minimum visible change": a value is at
+//! rest when it is closer to its target than a change nobody would see, and moves slower
+//! than that. At rest it snaps exactly to the target and costs nothing until it is
+//! retargeted.
+
+use crate::error::{Error, Parameter, positive};
+use crate::kernel::Coefficients;
+use crate::scalar::Scalar;
+
+/// Position and velocity thresholds below which a spring is at rest.
+///
+/// ```
+/// use stiffspring::RestThreshold;
+///
+/// // Pixels: a quarter of a pixel and a few pixels per second.
+/// let px = RestThreshold::new(0.25, 4.0)?;
+/// assert_eq!((px.position(), px.velocity()), (0.25, 4.0));
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct RestThreshold {
+    position: f64,
+    velocity: f64,
+}
+
+impl RestThreshold {
+    /// Android's thresholds for a minimum visible change of 1 (one pixel):
+    /// `position = 0.75`, `velocity = 46.875` per second.
+    pub const PIXELS: RestThreshold = RestThreshold::from_visible_change(1.0);
+
+    /// A threshold of `position` (the user's unit) and `velocity` (units per second).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::NotPositive`] for either argument.
+    ///
+    /// ```
+    /// assert!(stiffspring::RestThreshold::new(0.0, 1.0).is_err());
+    /// ```
+    pub fn new(position: f64, velocity: f64) -> Result<Self, Error> {
+        Ok(RestThreshold {
+            position: positive(position, Parameter::Threshold)?,
+            velocity: positive(velocity, Parameter::Threshold)?,
+        })
+    }
+
+    /// Android's rule: from the smallest change of the value a user can see,
+    /// `position = 0.75·change` and `velocity = 62.5·position` per second
+    /// (`SpringForce`'s `THRESHOLD_MULTIPLIER` and `VELOCITY_THRESHOLD_MULTIPLIER`).
+    ///
+    /// Android's constants for the change: 1 for pixels, 0.1 for degrees of rotation,
+    /// 1/256 for alpha, 1/500 for scale.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::NotPositive`].
+    ///
+    /// ```
+    /// let alpha = stiffspring::RestThreshold::from_min_visible_change(1.0 / 256.0)?;
+    /// assert_eq!(alpha.position(), 0.75 / 256.0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn from_min_visible_change(change: f64) -> Result<Self, Error> {
+        Ok(Self::from_visible_change(positive(
+            change,
+            Parameter::Threshold,
+        )?))
+    }
+
+    const fn from_visible_change(change: f64) -> Self {
+        let position = 0.75 * change;
+        RestThreshold {
+            position,
+            velocity: 62.5 * position,
+        }
+    }
+
+    /// The position threshold, in the user's unit.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::RestThreshold::PIXELS.position(), 0.75);
+    /// ```
+    pub const fn position(&self) -> f64 {
+        self.position
+    }
+
+    /// The velocity threshold, in the user's unit per second.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::RestThreshold::PIXELS.velocity(), 46.875);
+    /// ```
+    pub const fn velocity(&self) -> f64 {
+        self.velocity
+    }
+}
+
+impl Default for RestThreshold {
+    /// A thousandth of a unit: fine enough for pixels and for values in `[0, 1]` alike.
+    fn default() -> Self {
+        RestThreshold::from_visible_change(1e-3)
+    }
+}
+
+/// A [`RestThreshold`] converted for one spring and one backend at set-up: the offset
+/// threshold and the *step* velocity threshold (`velocity·dt`), both widened to cover
+/// the fixed-point dead band so that every trajectory reaches it.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub(crate) struct RestBand<S: Scalar> {
+    pub(crate) offset: S,
+    pub(crate) step_velocity: S,
+}
+
+impl<S: Scalar> RestBand<S> {
+    pub(crate) fn new(threshold: &RestThreshold, coefficients: &Coefficients<S>, dt: f64) -> Self {
+        let lsb = S::RESOLUTION;
+        let ck = S::coef_to_f64(coefficients.stiffness());
+        // With u = 0 and |C_k·x| < ½ LSB the rounded response is 0: the spring stops for
+        // good anywhere in |x| < 0.5/C_k LSB (tests/fixed_rounding.rs measures it). One
+        // LSB more covers the rounding of the threshold itself. A spring with C_k = 0
+        // has no pull toward its target, so nothing is widened.
+        let dead_band = if ck > 0.0 {
+            (0.5 / ck + 1.0) * lsb
+        } else {
+            0.0
+        };
+        RestBand {
+            offset: S::from_f64(threshold.position.max(dead_band)),
+            step_velocity: S::from_f64((threshold.velocity * dt).max(lsb)),
+        }
+    }
+
+    /// True when both the offset and the step velocity are inside the band.
+    #[inline(always)]
+    pub(crate) fn contains(&self, offset: S, step_velocity: S) -> bool {
+        offset.abs() <= self.offset && step_velocity.abs() <= self.step_velocity
+    }
+}

@@ -1,0 +1,168 @@
+//! `I16F16` and `I32F32`: saturating fixed point with high-precision coefficients.
+//!
+//! | backend  | position   | coefficient | product        |
+//! |----------|------------|-------------|----------------|
+//! | `I16F16` | `i32`, Q16.16 | `I3F29` (`i32`) | `i64`, exact |
+//! | `I32F32` | `i64`, Q32.32 | `I3F61` (`i64`) | `i128`, exact |
+//!
+//! Three integer bits in the coefficient cover `C_k < 4`, the top of the single-spring
+//! stability region (`C_k + 2·C_d < 4`), and `1 − C_d ∈ (−1, 1]`. The difference of two
+//! products cannot overflow the double-width integer: each factor is at most `2³¹`
+//! (resp. `2⁶³`) in magnitude, so each product is at most `2⁶²` (resp. `2¹²⁶`), and the
+//! two extremes cannot both be reached with opposite signs because the positive end of
+//! each signed format is one LSB short of the negative end.
+//!
+//! The `fixed` crate provides the types, the conversions and the saturating add, but its
+//! products round toward −∞ and it has no "sum of two products, rounded once". The
+//! products here are therefore taken on the raw bits, with the rounding chosen in the
+//! [parent module](super).
+
+use super::{Scalar, Sealed};
+use fixed::types::{I3F29, I3F61, I16F16, I32F32};
+
+/// Rounds `p / 2^SHIFT` to nearest, ties away from zero, and saturates to the narrow type.
+///
+/// Adding `half − 1` for negative `p` (`p >> (BITS−1)` is −1 there) turns the arithmetic
+/// shift's floor into round-half-away-from-zero on both sides.
+macro_rules! narrow_fn {
+    ($name:ident, $Wide:ty, $Narrow:ty, $SHIFT:expr) => {
+        #[inline(always)]
+        const fn $name(p: $Wide) -> $Narrow {
+            const HALF: $Wide = 1 << ($SHIFT - 1);
+            let r = (p + HALF + (p >> (<$Wide>::BITS - 1))) >> $SHIFT;
+            if r > <$Narrow>::MAX as $Wide {
+                <$Narrow>::MAX
+            } else if r < <$Narrow>::MIN as $Wide {
+                <$Narrow>::MIN
+            } else {
+                r as $Narrow
+            }
+        }
+    };
+}
+
+narrow_fn!(narrow_q29, i64, i32, 29);
+narrow_fn!(narrow_q61, i128, i64, 61);
+
+macro_rules! fixed_backend {
+    ($S:ty, $Coef:ty, $Wide:ty, $narrow:ident, $name:literal) => {
+        impl Sealed for $S {}
+
+        impl Scalar for $S {
+            type Coef = $Coef;
+
+            const ZERO: Self = <$S>::ZERO;
+            const NAME: &'static str = $name;
+            const RESOLUTION: f64 = 1.0 / (1u64 << <$S>::FRAC_NBITS) as f64;
+            const SAFE_MAGNITUDE: f64 = (1u64 << <$S>::INT_NBITS - 1) as f64;
+
+            #[inline]
+            fn from_f64(value: f64) -> Self {
+                // `saturating_from_num` panics on NaN; the library never does.
+                if value.is_nan() {
+                    <$S>::ZERO
+                } else {
+                    <$S>::saturating_from_num(value)
+                }
+            }
+            #[inline]
+            fn to_f64(self) -> f64 {
+                self.to_num::<f64>()
+            }
+            #[inline]
+            fn coef(value: f64) -> Self::Coef {
+                // `saturating_from_num` panics on NaN; the library never does.
+                if value.is_nan() {
+                    <$Coef>::ZERO
+                } else {
+                    <$Coef>::saturating_from_num(value)
+                }
+            }
+            #[inline]
+            fn coef_to_f64(coef: Self::Coef) -> f64 {
+                coef.to_num::<f64>()
+            }
+            #[inline]
+            fn is_valid(self) -> bool {
+                true
+            }
+            #[inline(always)]
+            fn add(self, rhs: Self) -> Self {
+                self.saturating_add(rhs)
+            }
+            #[inline(always)]
+            fn sub(self, rhs: Self) -> Self {
+                self.saturating_sub(rhs)
+            }
+            #[inline(always)]
+            fn neg(self) -> Self {
+                self.saturating_neg()
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                self.saturating_abs()
+            }
+            #[inline(always)]
+            fn mul_coef(self, coef: Self::Coef) -> Self {
+                <$S>::from_bits($narrow(self.to_bits() as $Wide * coef.to_bits() as $Wide))
+            }
+            #[inline(always)]
+            fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self {
+                let p = a.to_bits() as $Wide * ca.to_bits() as $Wide
+                    - b.to_bits() as $Wide * cb.to_bits() as $Wide;
+                <$S>::from_bits($narrow(p))
+            }
+        }
+    };
+}
+
+fixed_backend!(I16F16, I3F29, i64, narrow_q29, "I16F16");
+fixed_backend!(I32F32, I3F61, i128, narrow_q61, "I32F32");
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn narrowing_rounds_half_away_from_zero() {
+        let half = 1i64 << 28;
+        let one = 1i64 << 29;
+        assert_eq!(narrow_q29(half), 1);
+        assert_eq!(narrow_q29(-half), -1);
+        assert_eq!(narrow_q29(half - 1), 0);
+        assert_eq!(narrow_q29(-half + 1), 0);
+        assert_eq!(narrow_q29(3 * half), 2);
+        assert_eq!(narrow_q29(-3 * half), -2);
+        assert_eq!(narrow_q29(5 * one + 1), 5);
+        assert_eq!(narrow_q29(i64::MAX / 2), i32::MAX);
+        assert_eq!(narrow_q29(i64::MIN / 2), i32::MIN);
+        assert_eq!(narrow_q61(3i128 << 60), 2);
+        assert_eq!(narrow_q61(-(3i128 << 60)), -2);
+    }
+
+    #[test]
+    fn extreme_products_saturate_instead_of_wrapping() {
+        // The corners of both formats: every sign combination of the extreme factors.
+        for c in [I3F29::MIN, I3F29::MAX] {
+            for d in [I3F29::MIN, I3F29::MAX] {
+                for a in [I16F16::MIN, I16F16::MAX] {
+                    for b in [I16F16::MIN, I16F16::MAX] {
+                        let exact = a.to_f64() * c.to_num::<f64>() - b.to_f64() * d.to_num::<f64>();
+                        let expected = I16F16::from_f64(exact);
+                        assert_eq!(I16F16::mul_coef_diff(a, c, b, d), expected);
+                    }
+                }
+            }
+        }
+        for c in [I3F61::MIN, I3F61::MAX] {
+            for a in [I32F32::MIN, I32F32::MAX] {
+                let exact = a.to_f64() * c.to_num::<f64>();
+                assert_eq!(a.mul_coef(c), I32F32::from_f64(exact));
+                let diff = I32F32::mul_coef_diff(a, c, a.neg(), c);
+                assert_eq!(diff, I32F32::from_f64(2.0 * exact));
+            }
+        }
+        assert_eq!(I16F16::coef(-9.0), I3F29::MIN);
+        assert_eq!(I16F16::coef(9.0), I3F29::MAX);
+    }
+}

@@ -1,0 +1,137 @@
+//! The arithmetic the whole crate is generic over.
+//!
+//! [`Scalar`] is implemented for `f32` (Cortex-M4F/M7/M33, which have a single-precision
+//! FPU), `f64` (host tools and tests) and, with the `fixed` feature, for
+//! [`fixed::types::I16F16`] and [`fixed::types::I32F32`] (Cortex-M0/M0+, which have no
+//! FPU at all).
+//!
+//! Two formats per backend:
+//!
+//! - **Positions and per-step velocities** (`u = v·dt`) are `Self`.
+//! - **Coefficients** (`C_k`, `C_d`, the two-body weights `w_a`, `w_b`) are
+//!   [`Scalar::Coef`]. In fixed point they keep many more fractional bits than
+//!   positions: a 1 Hz spring stepped at 1 kHz has `C_k ≈ 3.9e−5`, which is only 3 LSB in
+//!   Q16.16 (a 16 % error in stiffness) but 21 000 LSB in Q3.29.
+//!
+//! Every fixed-point operation saturates; none wraps. Float ↔ fixed conversion happens
+//! at set-up only ([`Scalar::from_f64`], [`Scalar::coef`]); the stepping code never
+//! touches a float when the backend is fixed point.
+//!
+//! # Rounding in fixed point
+//!
+//! Products of a position and a coefficient are computed exactly in a double-width
+//! integer, summed there, and rounded **once**, to nearest with ties away from zero. The
+//! choice comes from the measurements in `tests/fixed_rounding.rs` (run
+//! `cargo test --release --test fixed_rounding -- --nocapture` for the table):
+//!
+//! - Round-to-nearest (any tie rule) leaves a spring in a dead band of
+//!   `|x| ≤ 0.5/C_k` LSB; truncation toward zero and flooring leave it in twice that
+//!   (`1/C_k` LSB), flooring also off-centre.
+//! - With the single fused rounding, no mode produced a limit cycle in the measured
+//!   grid: every trajectory ended at a fixed point with `u = 0`.
+//! - Ties away from zero is symmetric, so a trajectory started from `−x₀` is exactly the
+//!   negation of the one from `x₀`, and two equal masses get exactly opposite velocity
+//!   changes (their momentum is conserved to the bit). Ties toward +∞ would break both on
+//!   the frequent exact ties of `w = 0.5`.
+//!
+//! The rest detection of [`SpringValue`](crate::SpringValue) widens its position threshold
+//! to cover the dead band, so a fixed-point value always settles.
+
+#[cfg(feature = "fixed")]
+mod fixed_point;
+mod float;
+
+use core::fmt::Debug;
+
+/// Keeps [`Scalar`] implementable only inside this crate, so that methods can be added
+/// without breaking anyone.
+mod sealed {
+    pub trait Sealed {}
+}
+pub(crate) use sealed::Sealed;
+
+/// A number format the springs can run in: `f32`, `f64`, `I16F16` or `I32F32`.
+///
+/// The methods are the complete arithmetic of the hot loops. Floats use plain IEEE
+/// arithmetic; fixed point saturates at the ends of its range and rounds products to
+/// nearest (ties away from zero), see the [module docs](self).
+///
+/// ```
+/// use stiffspring::Scalar;
+///
+/// // The spring's velocity response (1 − C_d)·u − C_k·x for u = 2, x = 1,
+/// // C_d = 0.5, C_k = 0.25, rounded once.
+/// let u_next = f32::mul_coef_diff(2.0, f32::coef(0.5), 1.0, f32::coef(0.25));
+/// assert_eq!(u_next, 0.75);
+/// ```
+pub trait Scalar: Sealed + Copy + PartialOrd + Debug + Default + Send + Sync + 'static {
+    /// The format of coefficients (`C_k`, `1 − C_d`, weights): a signed fraction in
+    /// `[−4, 4)`, with more precision than positions in fixed point.
+    type Coef: Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+
+    /// Zero.
+    const ZERO: Self;
+    /// A short name for tables: `"f32"`, `"I16F16"`, ...
+    const NAME: &'static str;
+    /// The smallest step between two values near zero, as `f64`; `0.0` for floats.
+    const RESOLUTION: f64;
+    /// The largest magnitude accepted at set-up for positions, targets and velocities.
+    ///
+    /// For floats it leaves headroom (`2¹⁰⁰` for `f32`, `2¹⁰⁰⁰` for `f64`) so that the
+    /// transient growth of a stable spring can never reach infinity. Fixed point accepts
+    /// its whole range and saturates.
+    const SAFE_MAGNITUDE: f64;
+
+    /// Converts from `f64`, rounding to nearest and saturating at the ends of the range
+    /// (NaN becomes zero). Set-up only.
+    fn from_f64(value: f64) -> Self;
+    /// Converts to `f64` (exact for every backend but `f64` itself, which is unchanged).
+    fn to_f64(self) -> f64;
+    /// Converts a coefficient from `f64`, rounding to nearest and saturating to
+    /// `[−4, 4)` in fixed point. Set-up only.
+    fn coef(value: f64) -> Self::Coef;
+    /// Converts a coefficient back to `f64`.
+    fn coef_to_f64(coef: Self::Coef) -> f64;
+    /// True when the value is finite and within [`Scalar::SAFE_MAGNITUDE`].
+    fn is_valid(self) -> bool;
+
+    /// `self + rhs` (saturating in fixed point).
+    fn add(self, rhs: Self) -> Self;
+    /// `self − rhs` (saturating in fixed point).
+    fn sub(self, rhs: Self) -> Self;
+    /// `−self` (saturating in fixed point).
+    fn neg(self) -> Self;
+    /// `|self|` (saturating in fixed point).
+    fn abs(self) -> Self;
+    /// `self · coef`, rounded once.
+    fn mul_coef(self, coef: Self::Coef) -> Self;
+    /// `a · ca − b · cb`, rounded once: the spring's velocity response
+    /// `(1 − C_d)·u − C_k·x`.
+    fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn round_trip<S: Scalar>() {
+        for v in [0.0, 1.0, -1.0, 0.5, 123.25, -7.75] {
+            assert_eq!(S::from_f64(v).to_f64(), v, "{}", S::NAME);
+        }
+        for c in [0.0, 1.0, 0.5, 0.25, 3.5, -0.75] {
+            assert_eq!(S::coef_to_f64(S::coef(c)), c, "{}", S::NAME);
+        }
+        assert_eq!(S::from_f64(f64::NAN).to_f64(), 0.0);
+    }
+
+    #[test]
+    fn conversions_round_trip_exact_values() {
+        round_trip::<f32>();
+        round_trip::<f64>();
+        #[cfg(feature = "fixed")]
+        {
+            round_trip::<fixed::types::I16F16>();
+            round_trip::<fixed::types::I32F32>();
+        }
+    }
+}

@@ -1,0 +1,348 @@
+//! The exact sampled-response map between a continuous damped oscillator and a tuning.
+//!
+//! A continuous oscillator `ẍ + 2ζω·ẋ + ω²·x = 0` has poles `s₁, s₂`. Put
+//! `zᵢ = e^{sᵢ·dt}`. The discrete spring `u ← (1 − C_d)·u − C_k·x, x ← x + u` has the
+//! characteristic polynomial `z² − (2 − C_k − C_d)·z + (1 − C_d)`, so choosing
+//!
+//! ```text
+//! 1 − C_d = z₁·z₂ = e^{−2ζω·dt}        C_k = (1 − z₁)(1 − z₂)
+//! ```
+//!
+//! gives it the same poles: started on two samples of a continuous trajectory, it hits
+//! that trajectory exactly at every later sample. The naive `C_k = k·dt²/m`,
+//! `C_d = c·dt/m` is only first-order accurate.
+//!
+//! The products are evaluated without cancellation, with `a = ζω·dt`:
+//!
+//! | case | `C_k` |
+//! |---|---|
+//! | ζ < 1 | `expm1(−a)² + 4·e^{−a}·sin²(ω_d·dt/2)`, `ω_d = ω·√((1−ζ)(1+ζ))` |
+//! | ζ = 1 | `expm1(−ω·dt)²` |
+//! | ζ > 1 | `expm1(−ω·dt·r₁)·expm1(−ω·dt·r₂)`, `r₂ = ζ + √((ζ−1)(ζ+1))`, `r₁ = 1/r₂` |
+//!
+//! Everything here runs once, at set-up, in `f64` through `libm`.
+
+use super::Tuning;
+use crate::error::{Error, Parameter, non_negative, positive};
+use core::f64::consts::TAU;
+use libm::{atan2, exp, expm1, hypot, log, log1p, sin, sinh, sqrt};
+
+/// A continuous damped harmonic oscillator: natural frequency and damping ratio.
+///
+/// It is the physical description that UI platforms and physics use; [`Oscillator::tuning`]
+/// turns it into the coefficients that reproduce it exactly at a given `dt`, and
+/// [`Tuning::oscillator`] goes back.
+///
+/// ```
+/// use stiffspring::Oscillator;
+///
+/// let osc = Oscillator::new(2.0, 0.3)?; // 2 Hz, ζ = 0.3
+/// let at_60 = osc.tuning(1.0 / 60.0)?;
+/// let back = at_60.oscillator(1.0 / 60.0)?;
+/// assert!((back.frequency() - 2.0).abs() < 1e-12);
+/// assert!((back.damping_ratio() - 0.3).abs() < 1e-12);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Oscillator {
+    omega: f64,
+    zeta: f64,
+}
+
+impl Oscillator {
+    /// An oscillator of natural frequency `frequency` (Hz) and damping ratio
+    /// `damping_ratio` (0 undamped, 1 critical, above 1 overdamped).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`], [`Error::NotPositive`] for the frequency,
+    /// [`Error::Negative`] for the damping ratio.
+    ///
+    /// ```
+    /// assert!(stiffspring::Oscillator::new(1.5, 1.0).is_ok());
+    /// assert!(stiffspring::Oscillator::new(1.5, -0.1).is_err());
+    /// ```
+    pub fn new(frequency: f64, damping_ratio: f64) -> Result<Self, Error> {
+        let f = positive(frequency, Parameter::Frequency)?;
+        Self::from_angular_frequency(TAU * f, damping_ratio)
+    }
+
+    /// An oscillator from values known to be valid (positive `omega`, non-negative `zeta`).
+    pub(crate) const fn from_parts(omega: f64, zeta: f64) -> Self {
+        Oscillator { omega, zeta }
+    }
+
+    /// An oscillator of angular natural frequency `omega` (rad/s).
+    ///
+    /// # Errors
+    ///
+    /// As [`Oscillator::new`].
+    ///
+    /// ```
+    /// let o = stiffspring::Oscillator::from_angular_frequency(10.0, 0.5)?;
+    /// assert_eq!(o.angular_frequency(), 10.0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn from_angular_frequency(omega: f64, damping_ratio: f64) -> Result<Self, Error> {
+        let omega = positive(omega, Parameter::Frequency)?;
+        let zeta = non_negative(damping_ratio, Parameter::DampingRatio)?;
+        Ok(Oscillator { omega, zeta })
+    }
+
+    /// The oscillator of a mass `m` on a spring `k` with a damper `c`:
+    /// `ω = √(k/m)`, `ζ = c / (2·√(k·m))`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`], [`Error::NotPositive`] for `k` and `m`, [`Error::Negative`]
+    /// for `c`.
+    ///
+    /// ```
+    /// let o = stiffspring::Oscillator::from_physical(100.0, 2.0, 1.0)?;
+    /// assert_eq!((o.angular_frequency(), o.damping_ratio()), (10.0, 0.1));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn from_physical(k: f64, c: f64, m: f64) -> Result<Self, Error> {
+        let k = positive(k, Parameter::SpringConstant)?;
+        let c = non_negative(c, Parameter::DampingConstant)?;
+        let m = positive(m, Parameter::Mass)?;
+        // ω = √(k/m) and ζ = c/(2√(km)) = c/(2mω); each quotient is formed once.
+        let omega = sqrt(k / m);
+        Self::from_angular_frequency(omega, c / (2.0 * m * omega))
+    }
+
+    /// The natural frequency in hertz.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::Oscillator::new(3.0, 0.0)?.frequency(), 3.0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn frequency(&self) -> f64 {
+        self.omega / TAU
+    }
+
+    /// The angular natural frequency `ω`, in rad/s.
+    ///
+    /// ```
+    /// let o = stiffspring::Oscillator::new(1.0, 0.0)?;
+    /// assert_eq!(o.angular_frequency(), core::f64::consts::TAU);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn angular_frequency(&self) -> f64 {
+        self.omega
+    }
+
+    /// The damping ratio `ζ`.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::Oscillator::new(1.0, 0.7)?.damping_ratio(), 0.7);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn damping_ratio(&self) -> f64 {
+        self.zeta
+    }
+
+    /// The tuning whose discrete spring samples this oscillator exactly every `dt`.
+    ///
+    /// Works undersampled too: above `f·dt = 1/6` (for ζ = 0) `C_k` exceeds 1, and above
+    /// `f·dt = 1/2` the samples alias, as any sampled signal does.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`; [`Error::Aliased`] for an
+    /// undamped oscillator at a multiple of half the sample rate;
+    /// [`Error::OutOfRange`] if `ω·dt` overflows.
+    ///
+    /// ```
+    /// use stiffspring::Oscillator;
+    ///
+    /// let t = Oscillator::new(1.0, 1.0)?.tuning(1e-3)?;
+    /// // C_d = 1 − e^{−2ωdt} ≈ 2ωdt, and C_k ≈ (ωdt)² for a well-sampled spring.
+    /// assert!((t.damping() - 0.012_488).abs() < 1e-6);
+    /// assert!((t.stiffness() - 3.9232e-5).abs() < 1e-8);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn tuning(&self, dt: f64) -> Result<Tuning, Error> {
+        let dt = positive(dt, Parameter::TimeStep)?;
+        let wh = self.omega * dt;
+        let z = self.zeta;
+        let a = z * wh;
+        let retention = exp(-2.0 * a);
+        let stiffness = if z < 1.0 {
+            let half_wdh = 0.5 * wh * sqrt((1.0 - z) * (1.0 + z));
+            let decay = expm1(-a);
+            let s = sin(half_wdh);
+            decay * decay + 4.0 * exp(-a) * s * s
+        } else if z == 1.0 {
+            let decay = expm1(-wh);
+            decay * decay
+        } else {
+            let r2 = z + sqrt((z - 1.0) * (z + 1.0));
+            expm1(-wh / r2) * expm1(-wh * r2)
+        };
+        if !stiffness.is_finite() || !retention.is_finite() {
+            return Err(Error::OutOfRange(Parameter::Frequency));
+        }
+        Tuning::from_map(stiffness, retention)
+    }
+
+    /// The step velocity `u₀ = x(0) − x(−dt)` that starts the discrete spring on the
+    /// continuous trajectory through offset `x0` (from the rest position) with velocity
+    /// `v0`.
+    ///
+    /// `v0·dt` would be the obvious choice and is only first-order right. With this `u₀`
+    /// and the tuning from [`Oscillator::tuning`], every later sample is exact.
+    ///
+    /// The result is finite for every finite input unless the backward extrapolation
+    /// overflows `f64` (a heavily overdamped oscillator with `ζω·dt` in the hundreds).
+    ///
+    /// ```
+    /// let o = stiffspring::Oscillator::new(2.0, 0.3)?;
+    /// let u0 = o.start_step_velocity(0.0, 10.0, 1.0 / 60.0);
+    /// assert!((u0 - 10.0 / 60.0).abs() < 0.01); // close to v0·dt, but not equal
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn start_step_velocity(&self, x0: f64, v0: f64, dt: f64) -> f64 {
+        // x(t) = e^{−ζωt}·[x0·C(t) + (v0 + ζω·x0)·S(t)], with C even and S odd, so
+        // x(−h) = e^{a}·[x0·C(h) − (v0 + ζω·x0)·S(h)] and
+        // u0 = x0·(1 − e^{a}·C(h)) + e^{a}·S(h)·(v0 + ζω·x0).
+        let (w, z, h) = (self.omega, self.zeta, dt);
+        let a = z * w * h;
+        let grow = exp(a);
+        let (one_minus_grow_c, s_h) = if z < 1.0 {
+            // C = cos(ω_d t), S = sin(ω_d t)/ω_d; 1 − e^a·cos b = −expm1(a) + 2e^a·sin²(b/2).
+            let wd = w * sqrt((1.0 - z) * (1.0 + z));
+            let b = wd * h;
+            let s = sin(0.5 * b);
+            (-expm1(a) + 2.0 * grow * s * s, sin(b) / wd)
+        } else if z == 1.0 {
+            (-expm1(a), h)
+        } else {
+            // C = cosh(γt), S = sinh(γt)/γ with γ = ω√(ζ²−1) < ζω, so both expm1 are > 0.
+            let gamma = w * sqrt((z - 1.0) * (z + 1.0));
+            let g = gamma * h;
+            (-0.5 * (expm1(a + g) + expm1(a - g)), sinh(g) / gamma)
+        };
+        x0 * one_minus_grow_c + grow * s_h * (v0 + z * w * x0)
+    }
+}
+
+impl Tuning {
+    /// The exact tuning for natural frequency `frequency` (Hz) and damping ratio
+    /// `damping_ratio`, stepped every `dt` seconds. See [`Oscillator::tuning`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Oscillator::new`] and [`Oscillator::tuning`].
+    ///
+    /// ```
+    /// let t = stiffspring::Tuning::from_frequency(2.0, 0.3, 1.0 / 60.0)?;
+    /// assert!(t.stiffness() > 0.0 && t.stiffness() < 0.05);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn from_frequency(frequency: f64, damping_ratio: f64, dt: f64) -> Result<Self, Error> {
+        Oscillator::new(frequency, damping_ratio)?.tuning(dt)
+    }
+
+    /// The exact tuning for a mass `m` on a spring `k` with damper `c`, stepped every
+    /// `dt`. See [`Oscillator::from_physical`] and [`Oscillator::tuning`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Oscillator::from_physical`] and [`Oscillator::tuning`].
+    ///
+    /// ```
+    /// // k = m/dt² would be the article's k_max; the exact map of a softer spring:
+    /// let t = stiffspring::Tuning::from_physical(400.0, 4.0, 1.0, 1e-3)?;
+    /// assert!((t.stiffness() - 400.0 * 1e-6).abs() < 1e-6);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn from_physical(k: f64, c: f64, m: f64, dt: f64) -> Result<Self, Error> {
+        Oscillator::from_physical(k, c, m)?.tuning(dt)
+    }
+
+    /// The continuous oscillator this tuning samples exactly when stepped every `dt`: the
+    /// inverse of [`Oscillator::tuning`].
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`;
+    /// [`Error::NoContinuousEquivalent`] when a pole of the map is zero or negative real
+    /// (any `C_d ≥ 1`, including [`Tuning::rigid`]) or `C_k = 0`.
+    ///
+    /// ```
+    /// use stiffspring::{Error, Tuning};
+    ///
+    /// let t = Tuning::from_coefficients(0.04, 0.1)?;
+    /// let o = t.oscillator(1.0 / 60.0)?;
+    /// assert!((o.frequency() - 1.97).abs() < 0.01);
+    /// assert_eq!(Tuning::rigid().oscillator(0.01), Err(Error::NoContinuousEquivalent));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn oscillator(&self, dt: f64) -> Result<Oscillator, Error> {
+        let h = positive(dt, Parameter::TimeStep)?;
+        let ck = self.stiffness;
+        let keep = self.retention;
+        if ck <= 0.0 || keep <= 0.0 {
+            return Err(Error::NoContinuousEquivalent);
+        }
+        let cd = self.damping();
+        let sum = ck + cd;
+        // 4·det − trace² = 4·C_k − (C_k + C_d)², formed without the 4 − 4 cancellation.
+        let neg_disc = 4.0 * ck - sum * sum;
+        let (omega, zeta) = if neg_disc > 0.0 {
+            // Complex pair: |z|² = 1 − C_d, arg z = θ. ln(1 − C_d) via log1p where 1 − C_d
+            // is near 1 (there `cd` is exact by Sterbenz's lemma).
+            let ln_keep = if keep > 0.5 { log1p(-cd) } else { log(keep) };
+            let decay_rate = -0.5 * ln_keep / h; // ζω
+            let theta = atan2(sqrt(neg_disc), 1.0 + keep - ck);
+            let omega = hypot(decay_rate, theta / h);
+            (omega, decay_rate / omega)
+        } else {
+            // Real pair: mᵢ = 1 − zᵢ with m₁·m₂ = C_k and m₁ + m₂ = C_k + C_d. The larger
+            // root is formed directly and the smaller from the product, free of cancellation.
+            let m2 = 0.5 * (sum + sqrt(-neg_disc));
+            if m2 >= 1.0 {
+                return Err(Error::NoContinuousEquivalent);
+            }
+            let m1 = ck / m2;
+            let s1 = log1p(-m1) / h;
+            let s2 = log1p(-m2) / h;
+            let omega = sqrt(s1 * s2);
+            (omega, -0.5 * (s1 + s2) / omega)
+        };
+        Oscillator::from_angular_frequency(omega, zeta).map_err(|_| Error::NoContinuousEquivalent)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn map_round_trips_through_its_inverse() {
+        for &f in &[0.1, 1.0, 5.0, 40.0] {
+            for &z in &[0.0, 0.05, 0.5, 0.999_999, 1.0, 1.000_001, 2.0, 10.0] {
+                for &dt in &[1e-4, 1e-3, 1.0 / 60.0] {
+                    if f * dt >= 0.5 {
+                        continue; // aliased: the inverse finds the alias, by design
+                    }
+                    let osc = Oscillator::new(f, z).unwrap();
+                    let back = osc.tuning(dt).unwrap().oscillator(dt).unwrap();
+                    let fe = (back.frequency() - f).abs() / f;
+                    let ze = (back.damping_ratio() - z).abs();
+                    assert!(fe < 1e-6, "f {f} z {z} dt {dt}: {fe}");
+                    assert!(ze < 1e-5, "f {f} z {z} dt {dt}: {ze}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn undamped_multiples_of_half_the_rate_alias() {
+        let osc = Oscillator::new(50.0, 0.0).unwrap();
+        assert_eq!(osc.tuning(0.01), Err(Error::Aliased));
+        assert!(osc.tuning(0.0099).is_ok());
+    }
+}

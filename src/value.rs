@@ -1,0 +1,490 @@
+//! A value that springs toward a target: the UI animation building block.
+//!
+//! The state is kept relative to the target, as the offset `x = position − target` and
+//! the step velocity `u = v·dt`, so that one step is exactly the kernel's response
+//! followed by one add per dimension:
+//!
+//! ```text
+//! u ← (1 − C_d)·u − C_k·x        x ← x + u
+//! ```
+//!
+//! Retargeting moves the offset and keeps the velocity. When both the offset and the
+//! step velocity fall inside the rest band, the value snaps exactly to its target and
+//! [`SpringValue::step`] returns at once until something moves it again.
+
+use crate::error::{Error, Parameter, positive};
+use crate::kernel::Coefficients;
+use crate::rest::{RestBand, RestThreshold};
+use crate::scalar::Scalar;
+use crate::tuning::Tuning;
+
+/// A `D`-dimensional value springing toward a target, in backend `S`.
+///
+/// ```
+/// use stiffspring::{SpringValue, Tuning};
+///
+/// let dt = 1.0 / 60.0;
+/// let tuning = Tuning::from_frequency(2.0, 1.0, dt)?; // 2 Hz, critically damped
+/// let mut x = SpringValue::<f32, 2>::new([0.0, 0.0], tuning, dt)?;
+/// x.set_target([100.0, 40.0])?;
+/// let mut frames = 0;
+/// while !x.is_at_rest() {
+///     x.step();
+///     frames += 1;
+/// }
+/// assert_eq!(x.position(), [100.0, 40.0]); // snapped exactly
+/// assert!(frames < 90);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct SpringValue<S: Scalar, const D: usize> {
+    offset: [S; D],
+    step_velocity: [S; D],
+    target: [S; D],
+    coefficients: Coefficients<S>,
+    threshold: RestThreshold,
+    band: RestBand<S>,
+    dt: f64,
+    at_rest: bool,
+}
+
+/// A one-dimensional [`SpringValue`].
+pub type SpringValue1<S> = SpringValue<S, 1>;
+
+/// Advances one component of a spring toward its target by one step and reports whether
+/// it is inside its rest band. The single place where a value (or a batch member) steps.
+#[inline(always)]
+pub(crate) fn advance<S: Scalar>(
+    offset: &mut S,
+    step_velocity: &mut S,
+    coefficients: &Coefficients<S>,
+    band: &RestBand<S>,
+) -> bool {
+    let u = coefficients.respond(*offset, *step_velocity);
+    let x = offset.add(u);
+    *step_velocity = u;
+    *offset = x;
+    band.contains(x, u)
+}
+
+pub(crate) fn check_all<S: Scalar, const D: usize>(
+    values: &[S; D],
+    what: Parameter,
+) -> Result<(), Error> {
+    if values.iter().all(|v| v.is_valid()) {
+        Ok(())
+    } else {
+        let bad = values.iter().find(|v| !v.is_valid());
+        match bad.map(|v| v.to_f64()) {
+            Some(v) if v.is_finite() => Err(Error::OutOfRange(what)),
+            _ => Err(Error::NotFinite(what)),
+        }
+    }
+}
+
+/// The step velocity that starts a spring of `coefficients` at `offset` with `velocity`
+/// on its continuous trajectory (`u₀ = x(0) − x(−dt)`), or `velocity·dt` when the tuning
+/// has no continuous equivalent (see [`Tuning::oscillator`]).
+pub(crate) fn fling_step_velocity<S: Scalar>(
+    coefficients: &Coefficients<S>,
+    offset: S,
+    velocity: S,
+    dt: f64,
+) -> Result<S, Error> {
+    let (x0, v0) = (offset.to_f64(), velocity.to_f64());
+    #[cfg(feature = "libm")]
+    let u0 = match coefficients.tuning().oscillator(dt) {
+        Ok(osc) => osc.start_step_velocity(x0, v0, dt),
+        Err(_) => v0 * dt,
+    };
+    #[cfg(not(feature = "libm"))]
+    let u0 = {
+        let _ = (coefficients, x0);
+        v0 * dt
+    };
+    let u = S::from_f64(u0);
+    if u0.is_finite() && u.is_valid() {
+        Ok(u)
+    } else {
+        Err(Error::OutOfRange(Parameter::Velocity))
+    }
+}
+
+impl<S: Scalar, const D: usize> SpringValue<S, D> {
+    /// A value at rest at `position`, tuned by `tuning`, stepped every `dt` seconds, with
+    /// the default [`RestThreshold`] (a thousandth of a unit).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for a position; [`Error::NotFinite`]
+    /// or [`Error::NotPositive`] for `dt`.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let v = SpringValue::<f64, 1>::new([3.0], Tuning::rigid(), 0.001)?;
+    /// assert!(v.is_at_rest());
+    /// assert!(SpringValue::<f32, 1>::new([f32::NAN], Tuning::rigid(), 0.001).is_err());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn new(position: [S; D], tuning: Tuning, dt: f64) -> Result<Self, Error> {
+        check_all(&position, Parameter::Position)?;
+        let dt = positive(dt, Parameter::TimeStep)?;
+        let coefficients = Coefficients::new(&tuning);
+        let threshold = RestThreshold::default();
+        Ok(SpringValue {
+            offset: [S::ZERO; D],
+            step_velocity: [S::ZERO; D],
+            target: position,
+            coefficients,
+            threshold,
+            band: RestBand::new(&threshold, &coefficients, dt),
+            dt,
+            at_rest: true,
+        })
+    }
+
+    /// The same value with other rest thresholds.
+    ///
+    /// ```
+    /// use stiffspring::{RestThreshold, SpringValue, Tuning};
+    ///
+    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?
+    ///     .with_rest_threshold(RestThreshold::PIXELS);
+    /// assert_eq!(v.rest_threshold(), RestThreshold::PIXELS);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn with_rest_threshold(mut self, threshold: RestThreshold) -> Self {
+        self.threshold = threshold;
+        self.band = RestBand::new(&threshold, &self.coefficients, self.dt);
+        self
+    }
+
+    /// Moves the target. The value keeps its position and velocity and springs toward the
+    /// new target from there; a value at rest wakes up.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`]; the value is then unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let t = Tuning::from_coefficients(0.1, 0.3)?;
+    /// let mut v = SpringValue::<f32, 1>::new([0.0], t, 0.01)?;
+    /// v.set_target([1.0])?;
+    /// v.step();
+    /// let u = v.step_velocity();
+    /// v.set_target([-1.0])?; // mid-flight: velocity kept
+    /// assert_eq!(v.step_velocity(), u);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn set_target(&mut self, target: [S; D]) -> Result<(), Error> {
+        check_all(&target, Parameter::Position)?;
+        let position = self.position();
+        for (i, t) in target.iter().enumerate() {
+            self.offset[i] = position[i].sub(*t);
+        }
+        self.target = target;
+        self.at_rest = self.is_inside_band_at_zero_velocity();
+        Ok(())
+    }
+
+    /// Moves the value to `position` at once (its target stays), keeping its velocity.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`]; the value is then unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::rigid(), 0.01)?;
+    /// v.set_position([2.0])?;
+    /// assert_eq!((v.position(), v.target()), ([2.0], [0.0]));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn set_position(&mut self, position: [S; D]) -> Result<(), Error> {
+        check_all(&position, Parameter::Position)?;
+        for (i, p) in position.iter().enumerate() {
+            self.offset[i] = p.sub(self.target[i]);
+        }
+        self.at_rest = self.is_inside_band_at_zero_velocity();
+        Ok(())
+    }
+
+    /// Gives the value a velocity (units per second), as a finger releasing a fling does.
+    ///
+    /// The step velocity is set to `u₀ = x(0) − x(−dt)` of the continuous oscillator this
+    /// value's tuning samples (see [`Oscillator::start_step_velocity`]), so that, for a
+    /// tuning from the exact map, every later sample lies exactly on the continuous
+    /// trajectory. A tuning without a continuous equivalent (`C_d ≥ 1`, such as
+    /// [`Tuning::rigid`]) or a build without `libm` gets `u₀ = velocity·dt`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the velocity, or when `u₀`
+    /// leaves the backend's range; the value is then unchanged.
+    ///
+    /// [`Oscillator::start_step_velocity`]: crate::Oscillator::start_step_velocity
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let dt = 1.0 / 120.0;
+    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::from_frequency(1.0, 0.5, dt)?, dt)?;
+    /// v.fling([2000.0])?;
+    /// v.step();
+    /// assert!(v.position()[0] > 15.0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn fling(&mut self, velocity: [S; D]) -> Result<(), Error> {
+        check_all(&velocity, Parameter::Velocity)?;
+        let mut u = [S::ZERO; D];
+        for i in 0..D {
+            u[i] = fling_step_velocity(&self.coefficients, self.offset[i], velocity[i], self.dt)?;
+        }
+        self.step_velocity = u;
+        self.at_rest = false;
+        Ok(())
+    }
+
+    /// Retunes the value; position and velocity are kept.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
+    /// v.set_tuning(Tuning::from_coefficients(0.1, 0.2)?);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn set_tuning(&mut self, tuning: Tuning) {
+        self.coefficients = Coefficients::new(&tuning);
+        self.band = RestBand::new(&self.threshold, &self.coefficients, self.dt);
+    }
+
+    /// Changes the time step, for a display that switches between 60 and 120 Hz.
+    ///
+    /// The step velocity is rescaled by `dt_new/dt_old`, so the velocity in units per
+    /// second is kept. If the tuning samples a continuous oscillator, the coefficients are
+    /// recomputed so that the same oscillator is sampled at the new rate; otherwise (for
+    /// example [`Tuning::rigid`], or without `libm`) they are kept, which the article
+    /// says keeps the same behaviour per step.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`, or an error of the exact
+    /// map at the new rate ([`Error::Aliased`]); the value is then unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let dt = 1.0 / 60.0;
+    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::from_frequency(2.0, 0.5, dt)?, dt)?;
+    /// v.set_dt(1.0 / 120.0)?;
+    /// let f = v.tuning().oscillator(1.0 / 120.0)?.frequency();
+    /// assert!((f - 2.0).abs() < 1e-9);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn set_dt(&mut self, dt: f64) -> Result<(), Error> {
+        let dt = positive(dt, Parameter::TimeStep)?;
+        let tuning = self.coefficients.tuning();
+        #[cfg(feature = "libm")]
+        let tuning = match tuning.oscillator(self.dt) {
+            Ok(osc) => osc.tuning(dt)?,
+            Err(_) => tuning,
+        };
+        let scale = dt / self.dt;
+        for u in self.step_velocity.iter_mut() {
+            *u = S::from_f64(u.to_f64() * scale);
+        }
+        self.dt = dt;
+        self.set_tuning(tuning);
+        Ok(())
+    }
+
+    /// Advances the value by one time step. Does nothing when the value is at rest.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::from_coefficients(0.5, 0.5)?, 0.01)?;
+    /// v.set_target([1.0])?;
+    /// v.step();
+    /// assert_eq!(v.position(), [0.5]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    #[inline]
+    pub fn step(&mut self) {
+        if self.at_rest {
+            return;
+        }
+        let mut inside = true;
+        for i in 0..D {
+            inside &= advance(
+                &mut self.offset[i],
+                &mut self.step_velocity[i],
+                &self.coefficients,
+                &self.band,
+            );
+        }
+        if inside {
+            self.settle();
+        }
+    }
+
+    /// The current position.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let v = SpringValue::<f32, 3>::new([1.0, 2.0, 3.0], Tuning::rigid(), 0.01)?;
+    /// assert_eq!(v.position(), [1.0, 2.0, 3.0]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn position(&self) -> [S; D] {
+        let mut p = self.target;
+        for (p, x) in p.iter_mut().zip(self.offset.iter()) {
+            *p = p.add(*x);
+        }
+        p
+    }
+
+    /// The target the value springs toward.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let v = SpringValue::<f32, 1>::new([4.0], Tuning::rigid(), 0.01)?;
+    /// assert_eq!(v.target(), [4.0]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn target(&self) -> [S; D] {
+        self.target
+    }
+
+    /// The offset from the target, `position − target`.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let mut v = SpringValue::<f32, 1>::new([4.0], Tuning::rigid(), 0.01)?;
+    /// v.set_target([1.0])?;
+    /// assert_eq!(v.offset(), [3.0]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn offset(&self) -> [S; D] {
+        self.offset
+    }
+
+    /// The step velocity `u = v·dt`: the distance moved in the last step.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let v = SpringValue::<f32, 1>::new([4.0], Tuning::rigid(), 0.01)?;
+    /// assert_eq!(v.step_velocity(), [0.0]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn step_velocity(&self) -> [S; D] {
+        self.step_velocity
+    }
+
+    /// The velocity in units per second, `u/dt` (the backward difference of the last step).
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::rigid(), 0.5)?;
+    /// v.set_target([1.0])?;
+    /// v.step();
+    /// assert_eq!(v.velocity(), [2.0]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn velocity(&self) -> [S; D] {
+        let mut v = [S::ZERO; D];
+        for (v, u) in v.iter_mut().zip(self.step_velocity.iter()) {
+            *v = S::from_f64(u.to_f64() / self.dt);
+        }
+        v
+    }
+
+    /// The time step, in seconds.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
+    /// assert_eq!(v.dt(), 0.01);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// The tuning in effect, after rounding to the backend's coefficient format.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let v = SpringValue::<f64, 1>::new([0.0], Tuning::rigid(), 0.01)?;
+    /// assert_eq!(v.tuning(), Tuning::rigid());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn tuning(&self) -> Tuning {
+        self.coefficients.tuning()
+    }
+
+    /// The rest thresholds as given by the user.
+    ///
+    /// ```
+    /// use stiffspring::{RestThreshold, SpringValue, Tuning};
+    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
+    /// assert_eq!(v.rest_threshold(), RestThreshold::default());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn rest_threshold(&self) -> RestThreshold {
+        self.threshold
+    }
+
+    /// The offset below which the value snaps to its target when it is slow enough: the
+    /// position threshold, widened in fixed point to cover the dead band
+    /// `0.5/C_k` LSB in which the rounded spring stops moving.
+    ///
+    /// ```
+    /// use stiffspring::{RestThreshold, SpringValue, Tuning};
+    ///
+    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?
+    ///     .with_rest_threshold(RestThreshold::new(0.5, 1.0)?);
+    /// assert_eq!(v.rest_offset(), 0.5);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn rest_offset(&self) -> S {
+        self.band.offset
+    }
+
+    /// True when the value sits exactly on its target with zero velocity, and stepping it
+    /// costs nothing.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
+    /// v.set_target([1.0])?;
+    /// assert!(!v.is_at_rest());
+    /// v.step();
+    /// v.step();
+    /// assert!(v.is_at_rest());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn is_at_rest(&self) -> bool {
+        self.at_rest
+    }
+
+    fn settle(&mut self) {
+        self.offset = [S::ZERO; D];
+        self.step_velocity = [S::ZERO; D];
+        self.at_rest = true;
+    }
+
+    /// After a set-up change: at rest only if the value sits exactly on the target and
+    /// does not move (anything else wakes it, and the next step decides).
+    fn is_inside_band_at_zero_velocity(&self) -> bool {
+        self.offset
+            .iter()
+            .chain(self.step_velocity.iter())
+            .all(|v| *v == S::ZERO)
+    }
+}
