@@ -7,9 +7,10 @@
 use crate::error::{Error, Parameter, positive};
 use crate::kernel::Coefficients;
 use crate::rest::{RestBand, RestThreshold};
+use crate::sampling::Sampling;
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
-use crate::value::{advance, check_all, fling_step_velocity};
+use crate::value::{advance, check_all};
 use heapless::Vec;
 
 /// Up to `N` values of dimension `D` springing toward their targets, in backend `S`,
@@ -39,6 +40,7 @@ pub struct SpringBatch<S: Scalar, const N: usize, const D: usize = 1> {
     step_velocities: Vec<[S; D], N>,
     targets: Vec<[S; D], N>,
     coefficients: Vec<Coefficients<S>, N>,
+    samplings: Vec<Sampling<S>, N>,
     bands: Vec<RestBand<S>, N>,
     thresholds: Vec<RestThreshold, N>,
     /// Indices of the values that are not at rest, in no particular order.
@@ -64,6 +66,7 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
             step_velocities: Vec::new(),
             targets: Vec::new(),
             coefficients: Vec::new(),
+            samplings: Vec::new(),
             bands: Vec::new(),
             thresholds: Vec::new(),
             awake: Vec::new(),
@@ -123,6 +126,10 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
             & self.step_velocities.push([S::ZERO; D]).is_ok()
             & self.targets.push(position).is_ok()
             & self.coefficients.push(coefficients).is_ok()
+            & self
+                .samplings
+                .push(Sampling::new(&tuning, &coefficients, self.dt))
+                .is_ok()
             & self.bands.push(band).is_ok()
             & self.thresholds.push(threshold).is_ok();
         if pushed {
@@ -132,7 +139,8 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
         }
     }
 
-    /// Moves the target of value `index`; it keeps its velocity and wakes up.
+    /// Moves the target of value `index`; it keeps its position and velocity and wakes
+    /// up, as [`SpringValue::set_target`](crate::SpringValue::set_target) does.
     ///
     /// # Errors
     ///
@@ -152,8 +160,13 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
         self.check_index(index)?;
         check_all(&target, Parameter::Position)?;
         let position = self.position(index)?;
+        let sampling = self.samplings[index];
         for (k, t) in target.iter().enumerate() {
-            self.offsets[index][k] = position[k].sub(*t);
+            let offset = position[k].sub(*t);
+            let delta = offset.sub(self.offsets[index][k]);
+            let u = &mut self.step_velocities[index][k];
+            *u = u.add(sampling.shift(delta));
+            self.offsets[index][k] = offset;
         }
         self.targets[index] = target;
         self.wake(index);
@@ -182,12 +195,7 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
         check_all(&velocity, Parameter::Velocity)?;
         let mut u = [S::ZERO; D];
         for k in 0..D {
-            u[k] = fling_step_velocity(
-                &self.coefficients[index],
-                self.offsets[index][k],
-                velocity[k],
-                self.dt,
-            )?;
+            u[k] = self.samplings[index].step_velocity(self.offsets[index][k], velocity[k])?;
         }
         self.step_velocities[index] = u;
         self.wake(index);
@@ -198,7 +206,8 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
     ///
     /// # Errors
     ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index.
+    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index, or for the
+    /// velocity when the new tuning needs a step velocity outside the backend's range.
     ///
     /// ```
     /// use stiffspring::{SpringBatch, Tuning};
@@ -210,8 +219,17 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
     pub fn set_tuning(&mut self, index: usize, tuning: Tuning) -> Result<(), Error> {
         self.check_index(index)?;
         let coefficients = Coefficients::new(&tuning);
+        let sampling = Sampling::new(&tuning, &coefficients, self.dt);
+        let old = self.samplings[index];
+        let mut u = [S::ZERO; D];
+        for (k, x) in self.offsets[index].iter().enumerate() {
+            let velocity = old.velocity(*x, self.step_velocities[index][k]);
+            u[k] = sampling.step_velocity(*x, velocity)?;
+        }
+        self.step_velocities[index] = u;
         self.bands[index] = RestBand::new(&self.thresholds[index], &coefficients, self.dt);
         self.coefficients[index] = coefficients;
+        self.samplings[index] = sampling;
         Ok(())
     }
 

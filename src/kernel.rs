@@ -60,7 +60,7 @@ impl<S: Scalar> Coefficients<S> {
     }
 
     /// The tuning these coefficients actually implement, after rounding to the backend's
-    /// coefficient format.
+    /// coefficient format, as raw coefficients (see [`Tuning::samples_oscillator`]).
     ///
     /// ```
     /// use stiffspring::{kernel::Coefficients, Tuning};
@@ -76,6 +76,7 @@ impl<S: Scalar> Coefficients<S> {
         Tuning::from_parts(
             S::coef_to_f64(self.stiffness),
             S::coef_to_f64(self.retention),
+            false,
         )
     }
 

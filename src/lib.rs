@@ -58,6 +58,7 @@ mod batch;
 mod error;
 pub mod kernel;
 mod rest;
+mod sampling;
 mod scalar;
 mod tuning;
 mod value;

@@ -8,13 +8,16 @@
 //! u ← (1 − C_d)·u − C_k·x        x ← x + u
 //! ```
 //!
-//! Retargeting moves the offset and keeps the velocity. When both the offset and the
-//! step velocity fall inside the rest band, the value snaps exactly to its target and
+//! Retargeting moves the offset and keeps the position and the velocity; with a tuning
+//! from the exact map, the value then follows exactly the continuous spring whose target
+//! jumped at that instant (see the `sampling` module). When both the offset and the step
+//! velocity fall inside the rest band, the value snaps exactly to its target and
 //! [`SpringValue::step`] returns at once until something moves it again.
 
 use crate::error::{Error, Parameter, positive};
 use crate::kernel::Coefficients;
 use crate::rest::{RestBand, RestThreshold};
+use crate::sampling::Sampling;
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
 
@@ -42,6 +45,7 @@ pub struct SpringValue<S: Scalar, const D: usize> {
     step_velocity: [S; D],
     target: [S; D],
     coefficients: Coefficients<S>,
+    sampling: Sampling<S>,
     threshold: RestThreshold,
     band: RestBand<S>,
     dt: f64,
@@ -82,34 +86,6 @@ pub(crate) fn check_all<S: Scalar, const D: usize>(
     }
 }
 
-/// The step velocity that starts a spring of `coefficients` at `offset` with `velocity`
-/// on its continuous trajectory (`u₀ = x(0) − x(−dt)`), or `velocity·dt` when the tuning
-/// has no continuous equivalent (see [`Tuning::oscillator`]).
-pub(crate) fn fling_step_velocity<S: Scalar>(
-    coefficients: &Coefficients<S>,
-    offset: S,
-    velocity: S,
-    dt: f64,
-) -> Result<S, Error> {
-    let (x0, v0) = (offset.to_f64(), velocity.to_f64());
-    #[cfg(feature = "libm")]
-    let u0 = match coefficients.tuning().oscillator(dt) {
-        Ok(osc) => osc.start_step_velocity(x0, v0, dt),
-        Err(_) => v0 * dt,
-    };
-    #[cfg(not(feature = "libm"))]
-    let u0 = {
-        let _ = (coefficients, x0);
-        v0 * dt
-    };
-    let u = S::from_f64(u0);
-    if u0.is_finite() && u.is_valid() {
-        Ok(u)
-    } else {
-        Err(Error::OutOfRange(Parameter::Velocity))
-    }
-}
-
 impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// A value at rest at `position`, tuned by `tuning`, stepped every `dt` seconds, with
     /// the default [`RestThreshold`] (a thousandth of a unit).
@@ -137,6 +113,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
             step_velocity: [S::ZERO; D],
             target: position,
             coefficients,
+            sampling: Sampling::new(&tuning, &coefficients, dt),
             threshold,
             band: RestBand::new(&threshold, &coefficients, dt),
             dt,
@@ -160,33 +137,43 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         self
     }
 
-    /// Moves the target. The value keeps its position and velocity and springs toward the
-    /// new target from there; a value at rest wakes up.
+    /// Moves the target. The value keeps its position and its velocity and springs
+    /// toward the new target from there; a value at rest wakes up.
+    ///
+    /// With raw coefficients the step velocity `u` is kept as it is. With a tuning from
+    /// the exact map the value then samples exactly the continuous spring whose target
+    /// jumped at this instant: the step velocity changes by `P·Δx` (see
+    /// [`Oscillator::start_weights`]), which also makes a value released from rest start
+    /// on the continuous trajectory instead of one step behind it.
     ///
     /// # Errors
     ///
     /// [`Error::NotFinite`] or [`Error::OutOfRange`]; the value is then unchanged.
     ///
+    /// [`Oscillator::start_weights`]: crate::Oscillator::start_weights
+    ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
     ///
-    /// let t = Tuning::from_coefficients(0.1, 0.3)?;
-    /// let mut v = SpringValue::<f32, 1>::new([0.0], t, 0.01)?;
+    /// let dt = 0.01;
+    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::from_frequency(2.0, 0.2, dt)?, dt)?;
     /// v.set_target([1.0])?;
     /// v.step();
-    /// let u = v.step_velocity();
-    /// v.set_target([-1.0])?; // mid-flight: velocity kept
-    /// assert_eq!(v.step_velocity(), u);
+    /// let (p, vel) = (v.position(), v.velocity());
+    /// v.set_target([-1.0])?; // mid-flight
+    /// assert_eq!(v.position(), p);
+    /// assert!((v.velocity()[0] - vel[0]).abs() < 1e-12);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn set_target(&mut self, target: [S; D]) -> Result<(), Error> {
         check_all(&target, Parameter::Position)?;
         let position = self.position();
+        let mut offset = [S::ZERO; D];
         for (i, t) in target.iter().enumerate() {
-            self.offset[i] = position[i].sub(*t);
+            offset[i] = position[i].sub(*t);
         }
         self.target = target;
-        self.at_rest = self.is_inside_band_at_zero_velocity();
+        self.move_offset(offset);
         Ok(())
     }
 
@@ -206,20 +193,21 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn set_position(&mut self, position: [S; D]) -> Result<(), Error> {
         check_all(&position, Parameter::Position)?;
+        let mut offset = [S::ZERO; D];
         for (i, p) in position.iter().enumerate() {
-            self.offset[i] = p.sub(self.target[i]);
+            offset[i] = p.sub(self.target[i]);
         }
-        self.at_rest = self.is_inside_band_at_zero_velocity();
+        self.move_offset(offset);
         Ok(())
     }
 
     /// Gives the value a velocity (units per second), as a finger releasing a fling does.
     ///
-    /// The step velocity is set to `u₀ = x(0) − x(−dt)` of the continuous oscillator this
-    /// value's tuning samples (see [`Oscillator::start_step_velocity`]), so that, for a
-    /// tuning from the exact map, every later sample lies exactly on the continuous
-    /// trajectory. A tuning without a continuous equivalent (`C_d ≥ 1`, such as
-    /// [`Tuning::rigid`]) or a build without `libm` gets `u₀ = velocity·dt`.
+    /// With a tuning from the exact map, the step velocity is set to `u₀ = x(0) − x(−dt)`
+    /// of the continuous oscillator the tuning samples (see
+    /// [`Oscillator::start_step_velocity`]), so that every later sample lies exactly on
+    /// the continuous trajectory. Raw coefficients get `u₀ = velocity·dt`. No
+    /// transcendental function runs here: the weights were computed at set-up.
     ///
     /// # Errors
     ///
@@ -242,39 +230,43 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         check_all(&velocity, Parameter::Velocity)?;
         let mut u = [S::ZERO; D];
         for i in 0..D {
-            u[i] = fling_step_velocity(&self.coefficients, self.offset[i], velocity[i], self.dt)?;
+            u[i] = self.sampling.step_velocity(self.offset[i], velocity[i])?;
         }
         self.step_velocity = u;
         self.at_rest = false;
         Ok(())
     }
 
-    /// Retunes the value; position and velocity are kept.
+    /// Retunes the value; its position and velocity are kept.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::OutOfRange`] for the velocity when the new tuning would need a step
+    /// velocity outside the backend's range; the value is then unchanged.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
     ///
     /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
-    /// v.set_tuning(Tuning::from_coefficients(0.1, 0.2)?);
+    /// v.set_tuning(Tuning::from_coefficients(0.1, 0.2)?)?;
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn set_tuning(&mut self, tuning: Tuning) {
-        self.coefficients = Coefficients::new(&tuning);
-        self.band = RestBand::new(&self.threshold, &self.coefficients, self.dt);
+    pub fn set_tuning(&mut self, tuning: Tuning) -> Result<(), Error> {
+        self.resample(tuning, self.dt)
     }
 
     /// Changes the time step, for a display that switches between 60 and 120 Hz.
     ///
-    /// The step velocity is rescaled by `dt_new/dt_old`, so the velocity in units per
-    /// second is kept. If the tuning samples a continuous oscillator, the coefficients are
-    /// recomputed so that the same oscillator is sampled at the new rate; otherwise (for
-    /// example [`Tuning::rigid`], or without `libm`) they are kept, which the article
-    /// says keeps the same behaviour per step.
+    /// Position and velocity (in units per second) are kept. If the tuning samples a
+    /// continuous oscillator ([`Tuning::samples_oscillator`]), the coefficients are
+    /// recomputed so that the same oscillator is sampled at the new rate; raw coefficients
+    /// are kept, which the article says keeps the same behaviour per step.
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`, or an error of the exact
-    /// map at the new rate ([`Error::Aliased`]); the value is then unchanged.
+    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`, an error of the exact map
+    /// at the new rate ([`Error::Aliased`]), or [`Error::OutOfRange`] for the velocity;
+    /// the value is then unchanged.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
@@ -288,18 +280,30 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn set_dt(&mut self, dt: f64) -> Result<(), Error> {
         let dt = positive(dt, Parameter::TimeStep)?;
-        let tuning = self.coefficients.tuning();
+        let tuning = self.tuning();
         #[cfg(feature = "libm")]
-        let tuning = match tuning.oscillator(self.dt) {
-            Ok(osc) => osc.tuning(dt)?,
-            Err(_) => tuning,
-        };
-        let scale = dt / self.dt;
-        for u in self.step_velocity.iter_mut() {
-            *u = S::from_f64(u.to_f64() * scale);
+        if tuning.samples_oscillator() {
+            let resampled = tuning.oscillator(self.dt)?.tuning(dt)?;
+            return self.resample(resampled, dt);
         }
+        self.resample(tuning, dt)
+    }
+
+    /// Installs `tuning` at `dt`, keeping position and velocity: the velocity is read
+    /// through the old sampling weights and written through the new ones.
+    fn resample(&mut self, tuning: Tuning, dt: f64) -> Result<(), Error> {
+        let velocity = self.velocity();
+        let coefficients = Coefficients::new(&tuning);
+        let sampling = Sampling::new(&tuning, &coefficients, dt);
+        let mut u = [S::ZERO; D];
+        for i in 0..D {
+            u[i] = sampling.step_velocity(self.offset[i], velocity[i])?;
+        }
+        self.step_velocity = u;
+        self.coefficients = coefficients;
+        self.sampling = sampling;
         self.dt = dt;
-        self.set_tuning(tuning);
+        self.band = RestBand::new(&self.threshold, &coefficients, dt);
         Ok(())
     }
 
@@ -386,20 +390,32 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         self.step_velocity
     }
 
-    /// The velocity in units per second, `u/dt` (the backward difference of the last step).
+    /// The velocity in units per second.
+    ///
+    /// For a tuning from the exact map it is the velocity of the continuous trajectory
+    /// the value samples, exactly (see [`SpringValue::fling`], whose inverse it is); for
+    /// raw coefficients the backward difference `u/dt`.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
+    ///
     /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::rigid(), 0.5)?;
     /// v.set_target([1.0])?;
     /// v.step();
     /// assert_eq!(v.velocity(), [2.0]);
+    ///
+    /// let dt = 0.01;
+    /// let mut w = SpringValue::<f64, 1>::new([0.0], Tuning::from_frequency(1.0, 0.1, dt)?, dt)?;
+    /// w.fling([3.0])?;
+    /// assert!((w.velocity()[0] - 3.0).abs() < 1e-12);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn velocity(&self) -> [S; D] {
         let mut v = [S::ZERO; D];
-        for (v, u) in v.iter_mut().zip(self.step_velocity.iter()) {
-            *v = S::from_f64(u.to_f64() / self.dt);
+        for i in 0..D {
+            v[i] = self
+                .sampling
+                .velocity(self.offset[i], self.step_velocity[i]);
         }
         v
     }
@@ -425,7 +441,8 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn tuning(&self) -> Tuning {
-        self.coefficients.tuning()
+        let t = self.coefficients.tuning();
+        Tuning::from_parts(t.stiffness(), t.retention(), self.sampling.is_continuous())
     }
 
     /// The rest thresholds as given by the user.
@@ -479,12 +496,17 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         self.at_rest = true;
     }
 
-    /// After a set-up change: at rest only if the value sits exactly on the target and
-    /// does not move (anything else wakes it, and the next step decides).
-    fn is_inside_band_at_zero_velocity(&self) -> bool {
-        self.offset
-            .iter()
-            .chain(self.step_velocity.iter())
-            .all(|v| *v == S::ZERO)
+    /// Jumps the offset to `offset` with the velocity kept (`u += P·Δx`). A value at rest
+    /// stays at rest only if nothing moved; anything else wakes it and the next step
+    /// decides.
+    fn move_offset(&mut self, offset: [S; D]) {
+        let mut moved = false;
+        for i in 0..D {
+            let delta = offset[i].sub(self.offset[i]);
+            moved |= delta != S::ZERO;
+            self.step_velocity[i] = self.step_velocity[i].add(self.sampling.shift(delta));
+            self.offset[i] = offset[i];
+        }
+        self.at_rest &= !moved;
     }
 }

@@ -191,11 +191,9 @@ impl Oscillator {
     /// continuous trajectory through offset `x0` (from the rest position) with velocity
     /// `v0`.
     ///
-    /// `v0·dt` would be the obvious choice and is only first-order right. With this `u₀`
-    /// and the tuning from [`Oscillator::tuning`], every later sample is exact.
-    ///
-    /// The result is finite for every finite input unless the backward extrapolation
-    /// overflows `f64` (a heavily overdamped oscillator with `ζω·dt` in the hundreds).
+    /// `v0·dt` would be the obvious choice and is only first-order right (and a value
+    /// released from rest with `u₀ = 0` is off by about `C_k/2·x0` per step). With this
+    /// `u₀` and the tuning from [`Oscillator::tuning`], every later sample is exact.
     ///
     /// ```
     /// let o = stiffspring::Oscillator::new(2.0, 0.3)?;
@@ -204,9 +202,29 @@ impl Oscillator {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn start_step_velocity(&self, x0: f64, v0: f64, dt: f64) -> f64 {
+        let (p, q) = self.start_weights(dt);
+        p * x0 + q * v0
+    }
+
+    /// The weights `(P, Q)` of [`Oscillator::start_step_velocity`], which is linear:
+    /// `u₀ = P·x0 + Q·v0`.
+    ///
+    /// A spring value precomputes them at set-up, so that retargeting (`u += P·Δx`) and
+    /// flinging cost no transcendental function. Both are finite unless the backward
+    /// extrapolation `x(−dt)` overflows `f64`, which takes a heavily overdamped
+    /// oscillator with `ζω·dt` in the hundreds.
+    ///
+    /// ```
+    /// let (p, q) = stiffspring::Oscillator::new(1.0, 0.0)?.start_weights(1e-3);
+    /// // Released from rest: x(−h) = x0·cos(ωh), so P = 1 − cos(ωh) ≈ (ωh)²/2.
+    /// assert!((p - (1.0 - (core::f64::consts::TAU * 1e-3).cos())).abs() < 1e-15);
+    /// assert!((q - 1e-3).abs() < 1e-8); // sin(ωh)/ω
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn start_weights(&self, dt: f64) -> (f64, f64) {
         // x(t) = e^{−ζωt}·[x0·C(t) + (v0 + ζω·x0)·S(t)], with C even and S odd, so
         // x(−h) = e^{a}·[x0·C(h) − (v0 + ζω·x0)·S(h)] and
-        // u0 = x0·(1 − e^{a}·C(h)) + e^{a}·S(h)·(v0 + ζω·x0).
+        // u0 = x0·(1 − e^{a}·C(h) + e^{a}·S(h)·ζω) + v0·e^{a}·S(h).
         let (w, z, h) = (self.omega, self.zeta, dt);
         let a = z * w * h;
         let grow = exp(a);
@@ -224,7 +242,8 @@ impl Oscillator {
             let g = gamma * h;
             (-0.5 * (expm1(a + g) + expm1(a - g)), sinh(g) / gamma)
         };
-        x0 * one_minus_grow_c + grow * s_h * (v0 + z * w * x0)
+        let q = grow * s_h;
+        (one_minus_grow_c + q * z * w, q)
     }
 }
 

@@ -43,6 +43,15 @@ use crate::error::{Error, Parameter};
 /// Every constructor checks its input; a `Tuning` that exists is stable (or, for the
 /// undamped exact map, marginally stable with distinct poles on the unit circle).
 ///
+/// A tuning remembers where it came from ([`Tuning::samples_oscillator`]):
+///
+/// - **Raw coefficients** keep the article's discrete meaning. The step velocity is
+///   `v·dt`, a retarget keeps it, and a new `dt` keeps the coefficients (the article's
+///   claim that behaviour per step does not depend on `dt`).
+/// - **The exact map** (frequency, physical constants, presets) samples a continuous
+///   oscillator. Values keep the *continuous* position and velocity across retargets,
+///   flings and changes of `dt`, and a new `dt` resamples the same oscillator.
+///
 /// ```
 /// use stiffspring::Tuning;
 ///
@@ -56,6 +65,7 @@ use crate::error::{Error, Parameter};
 pub struct Tuning {
     stiffness: f64,
     retention: f64,
+    sampled: bool,
 }
 
 impl Tuning {
@@ -81,6 +91,7 @@ impl Tuning {
         Tuning {
             stiffness: 1.0,
             retention: 0.0,
+            sampled: false,
         }
     }
 
@@ -114,6 +125,7 @@ impl Tuning {
         Ok(Tuning {
             stiffness: ck,
             retention: 1.0 - cd,
+            sampled: false,
         })
     }
 
@@ -151,6 +163,7 @@ impl Tuning {
             return Ok(Tuning {
                 stiffness: ck,
                 retention: 1.0 - cd,
+                sampled: false,
             });
         }
         // Name the coefficient that is out of its own range first, else blame C_k.
@@ -173,6 +186,7 @@ impl Tuning {
             Ok(Tuning {
                 stiffness: ck,
                 retention,
+                sampled: true,
             })
         } else {
             Err(Error::Aliased)
@@ -181,11 +195,29 @@ impl Tuning {
 
     /// Rebuilds a tuning from coefficients that were validated before being rounded to a
     /// backend's format (see [`crate::kernel::Coefficients::tuning`]).
-    pub(crate) const fn from_parts(stiffness: f64, retention: f64) -> Self {
+    pub(crate) const fn from_parts(stiffness: f64, retention: f64, sampled: bool) -> Self {
         Tuning {
             stiffness,
             retention,
+            sampled,
         }
+    }
+
+    /// True when the tuning came from the exact map of a continuous [`Oscillator`]
+    /// (frequency, physical constants, a preset) rather than from raw coefficients.
+    ///
+    /// [`Oscillator`]: crate::Oscillator
+    ///
+    /// ```
+    /// use stiffspring::Tuning;
+    ///
+    /// assert!(!Tuning::rigid().samples_oscillator());
+    /// # #[cfg(feature = "libm")]
+    /// assert!(Tuning::from_frequency(1.0, 0.5, 0.01)?.samples_oscillator());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn samples_oscillator(&self) -> bool {
+        self.sampled
     }
 
     /// The stiffness coefficient `C_k`, a fraction of `k_max = m/dt²`.
