@@ -165,7 +165,7 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
             let offset = position[k].sub(*t);
             let delta = offset.sub(self.offsets[index][k]);
             let u = &mut self.step_velocities[index][k];
-            *u = u.add(sampling.shift(delta));
+            *u = sampling.shift(*u, delta);
             self.offsets[index][k] = offset;
         }
         self.targets[index] = target;

@@ -28,13 +28,18 @@ use crate::kernel::Coefficients;
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
 
-/// `P` (in the coefficient format, used on retargets) and `Q` (in `f64`, used on the rare
-/// conversions between `u` and `v`) for one spring at one `dt`.
+/// `P` and `Q` for one spring at one `dt`.
+///
+/// Both stay in `f64`: they are used only on retargets, flings and retunes, never in a
+/// step, and `P` spans many decades (about `C_k/2` for a well-sampled spring, above 4 for
+/// an undersampled one, `e^{2ζω·dt}` for a heavily overdamped one), more than any
+/// fixed-point coefficient format holds.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub(crate) struct Sampling<S: Scalar> {
-    offset_weight: S::Coef,
+    offset_weight: f64,
     velocity_weight: f64,
     continuous: bool,
+    backend: core::marker::PhantomData<S>,
 }
 
 impl<S: Scalar> Sampling<S> {
@@ -46,22 +51,24 @@ impl<S: Scalar> Sampling<S> {
             // Raw coefficients: the article's discrete velocity.
         } else if let Ok(osc) = coefficients.tuning().oscillator(dt) {
             let (p, q) = osc.start_weights(dt);
-            // P beyond the coefficient range only happens for heavily overdamped,
-            // undersampled springs, whose backward sample explodes; those fall back too.
-            if p.abs() < S::COEF_MAX && q.is_finite() && q > 0.0 {
+            // Only a backward extrapolation that overflows f64 (ζω·dt in the hundreds)
+            // falls back to the discrete meaning.
+            if p.is_finite() && q.is_finite() && q > 0.0 {
                 return Sampling {
-                    offset_weight: S::coef(p),
+                    offset_weight: p,
                     velocity_weight: q,
                     continuous: true,
+                    backend: core::marker::PhantomData,
                 };
             }
         }
         #[cfg(not(feature = "libm"))]
         let _ = (tuning, coefficients);
         Sampling {
-            offset_weight: S::coef(0.0),
+            offset_weight: 0.0,
             velocity_weight: dt,
             continuous: false,
+            backend: core::marker::PhantomData,
         }
     }
 
@@ -70,11 +77,16 @@ impl<S: Scalar> Sampling<S> {
         self.continuous
     }
 
-    /// The change of the step velocity when the offset jumps by `delta` with the velocity
-    /// kept: `P·Δ`.
-    #[inline]
-    pub(crate) fn shift(&self, delta: S) -> S {
-        delta.mul_coef(self.offset_weight)
+    /// The step velocity after the offset jumped by `delta` with the velocity kept:
+    /// `u + P·Δ`, rounded once and saturated to the backend's range (a heavily overdamped,
+    /// undersampled spring in fixed point can ask for more than the range holds; the
+    /// stable map still brings it to rest).
+    pub(crate) fn shift(&self, step_velocity: S, delta: S) -> S {
+        if delta == S::ZERO || !self.continuous {
+            return step_velocity;
+        }
+        let u = step_velocity.to_f64() + self.offset_weight * delta.to_f64();
+        S::from_f64(u.clamp(-S::SAFE_MAGNITUDE, S::SAFE_MAGNITUDE))
     }
 
     /// The step velocity `P·x + Q·v` for offset `x` and velocity `v` (units per second).
@@ -83,8 +95,7 @@ impl<S: Scalar> Sampling<S> {
     ///
     /// [`Error::OutOfRange`] for the velocity when the result leaves the backend's range.
     pub(crate) fn step_velocity(&self, offset: S, velocity: S) -> Result<S, Error> {
-        let u = S::coef_to_f64(self.offset_weight) * offset.to_f64()
-            + self.velocity_weight * velocity.to_f64();
+        let u = self.offset_weight * offset.to_f64() + self.velocity_weight * velocity.to_f64();
         if u.is_finite() && u.abs() <= S::SAFE_MAGNITUDE {
             Ok(S::from_f64(u))
         } else {
@@ -95,7 +106,7 @@ impl<S: Scalar> Sampling<S> {
     /// The velocity (units per second) `(u − P·x)/Q` of the continuous trajectory through
     /// offset `x` with step velocity `u`.
     pub(crate) fn velocity(&self, offset: S, step_velocity: S) -> S {
-        let p = S::coef_to_f64(self.offset_weight);
-        S::from_f64((step_velocity.to_f64() - p * offset.to_f64()) / self.velocity_weight)
+        let u = step_velocity.to_f64() - self.offset_weight * offset.to_f64();
+        S::from_f64(u / self.velocity_weight)
     }
 }

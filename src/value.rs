@@ -504,7 +504,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         for i in 0..D {
             let delta = offset[i].sub(self.offset[i]);
             moved |= delta != S::ZERO;
-            self.step_velocity[i] = self.step_velocity[i].add(self.sampling.shift(delta));
+            self.step_velocity[i] = self.sampling.shift(self.step_velocity[i], delta);
             self.offset[i] = offset[i];
         }
         self.at_rest &= !moved;

@@ -54,7 +54,6 @@ macro_rules! fixed_backend {
             const ZERO: Self = <$S>::ZERO;
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 1.0 / (1u64 << <$S>::FRAC_NBITS) as f64;
-            const COEF_MAX: f64 = 4.0;
             const SAFE_MAGNITUDE: f64 = (1u64 << <$S>::INT_NBITS - 1) as f64;
 
             #[inline]

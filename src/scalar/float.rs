@@ -12,7 +12,6 @@ macro_rules! float_backend {
             const ZERO: Self = 0.0;
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 0.0;
-            const COEF_MAX: f64 = <$F>::MAX as f64;
             // 2^e, written out because `powi` is not in `core`: the headroom below
             // `MAX` absorbs the transient growth of any stable 2×2 map (see `SAFE_MAGNITUDE`).
             const SAFE_MAGNITUDE: f64 = f64::from_bits(((1023 + $safe_exponent) as u64) << 52);

@@ -75,9 +75,6 @@ pub trait Scalar: Sealed + Copy + PartialOrd + Debug + Default + Send + Sync + '
     const NAME: &'static str;
     /// The smallest step between two values near zero, as `f64`; `0.0` for floats.
     const RESOLUTION: f64;
-    /// The magnitude below which a coefficient is represented without saturating:
-    /// `4` in fixed point, the format's `MAX` for floats.
-    const COEF_MAX: f64;
     /// The largest magnitude accepted at set-up for positions, targets and velocities.
     ///
     /// For floats it leaves headroom (`2¹⁰⁰` for `f32`, `2¹⁰⁰⁰` for `f64`) so that the

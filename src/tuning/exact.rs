@@ -310,24 +310,28 @@ impl Tuning {
         let sum = ck + cd;
         // 4·det − trace² = 4·C_k − (C_k + C_d)², formed without the 4 − 4 cancellation.
         let neg_disc = 4.0 * ck - sum * sum;
+        // ln(1 − C_d) through log1p where 1 − C_d is near 1 (there `cd` is exact by
+        // Sterbenz's lemma), directly elsewhere.
+        let ln_keep = if keep > 0.5 { log1p(-cd) } else { log(keep) };
         let (omega, zeta) = if neg_disc > 0.0 {
-            // Complex pair: |z|² = 1 − C_d, arg z = θ. ln(1 − C_d) via log1p where 1 − C_d
-            // is near 1 (there `cd` is exact by Sterbenz's lemma).
-            let ln_keep = if keep > 0.5 { log1p(-cd) } else { log(keep) };
+            // Complex pair: |z|² = 1 − C_d, arg z = θ.
             let decay_rate = -0.5 * ln_keep / h; // ζω
             let theta = atan2(sqrt(neg_disc), 1.0 + keep - ck);
             let omega = hypot(decay_rate, theta / h);
             (omega, decay_rate / omega)
         } else {
-            // Real pair: mᵢ = 1 − zᵢ with m₁·m₂ = C_k and m₁ + m₂ = C_k + C_d. The larger
-            // root is formed directly and the smaller from the product, free of cancellation.
-            let m2 = 0.5 * (sum + sqrt(-neg_disc));
-            if m2 >= 1.0 {
+            // Real pair. Both poles are positive exactly when trace = 1 + keep − C_k > 0
+            // (their product keep is > 0 already). With mᵢ = 1 − zᵢ, m₁·m₂ = C_k and
+            // m₁ + m₂ = C_k + C_d: the larger m₂ is formed directly, the smaller m₁ from the
+            // product, and the fast pole as z₂ = keep/z₁, because m₂ rounds to 1 where
+            // z₂ is tiny (a heavily overdamped spring) and 1 − m₂ would lose it.
+            if 1.0 + keep - ck <= 0.0 {
                 return Err(Error::NoContinuousEquivalent);
             }
-            let m1 = ck / m2;
-            let s1 = log1p(-m1) / h;
-            let s2 = log1p(-m2) / h;
+            let m2 = 0.5 * (sum + sqrt(-neg_disc));
+            let ln_z1 = log1p(-ck / m2);
+            let s1 = ln_z1 / h;
+            let s2 = (ln_keep - ln_z1) / h;
             let omega = sqrt(s1 * s2);
             (omega, -0.5 * (s1 + s2) / omega)
         };
