@@ -117,12 +117,13 @@ impl<S: Scalar> RestBand<S> {
     pub(crate) fn new(threshold: &RestThreshold, coefficients: &Coefficients<S>, dt: f64) -> Self {
         let lsb = S::RESOLUTION;
         let ck = S::coef_to_f64(coefficients.stiffness());
-        // With u = 0 and |C_k·x| < ½ LSB the rounded response is 0: the spring stops for
-        // good anywhere in |x| < 0.5/C_k LSB (tests/fixed_rounding.rs measures it). One
-        // LSB more covers the rounding of the threshold itself. A spring with C_k = 0
-        // has no pull toward its target, so nothing is widened.
+        // Products are truncated toward zero, so with u = 0 and |C_k·x| < 1 LSB the
+        // response is 0: the spring stops for good anywhere in |x| < 1/C_k LSB
+        // (tests/fixed_rounding.rs measures it). One LSB more covers the rounding of the
+        // threshold itself. A spring with C_k = 0 has no pull toward its target, so
+        // nothing is widened.
         let dead_band = if ck > 0.0 {
-            (0.5 / ck + 1.0) * lsb
+            (1.0 / ck + 1.0) * lsb
         } else {
             0.0
         };

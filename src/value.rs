@@ -459,7 +459,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
 
     /// The offset below which the value snaps to its target when it is slow enough: the
     /// position threshold, widened in fixed point to cover the dead band
-    /// `0.5/C_k` LSB in which the rounded spring stops moving.
+    /// `1/C_k` LSB in which the rounded spring stops moving.
     ///
     /// ```
     /// use stiffspring::{RestThreshold, SpringValue, Tuning};

@@ -112,24 +112,34 @@ fn f32_matches_the_analytic_trajectory() {
 const F32_BOUND: f64 = 3e-3;
 
 /// The error model of fixed point, relative to the amplitude `A`, with `ωh = 2π·f·dt`,
-/// `C_k ≈ (ωh)²`, position LSB `q`, coefficient LSB `c` and `N` steps:
+/// the smallest `C_k` of the row (≈ `(ωh)²` when well sampled), position LSB `q`,
+/// coefficient LSB `c` and `N` steps:
 ///
-/// - **dead band**: the spring stops where `C_k·x` rounds to zero, `(0.5/C_k + 1)·q`
+/// - **dead band**: the spring stops where `C_k·x` truncates to zero, `(1/C_k + 1)·q`
 ///   (tests/fixed_rounding.rs);
 /// - **rounding noise**: each step rounds `u` by up to `q/2`, which an undamped spring
 ///   never forgets; as a random walk that is `√N·(q/2)/(ωh)` in position;
 /// - **coefficient rounding**: `C_k` off by `c/2` detunes the frequency by `c/(4·C_k)`
-///   relatively, a phase error of `N·ωh·c/(4·C_k)` after `N` steps.
+///   relatively, a phase error of `N·ωh·c/(4·C_k)` after `N` steps;
+/// - **truncation drag**: truncating `(1 − C_d)·u − C_k·x` toward zero shortens `u` by
+///   half an LSB per step on average, a Coulomb friction of `q/2` per step² that takes
+///   `2/C_k` LSB of amplitude per cycle, `2·N·f·dt/C_k·q` over the run (a bound: a damped
+///   spring has lost its amplitude long before).
 ///
 /// The bound is three times their sum plus a floor for the float parts of the test.
 fn fixed_bound<S: Scalar>(fdt: f64, amplitude: f64, coef_lsb: f64) -> f64 {
     let wh = core::f64::consts::TAU * fdt;
-    let ck = wh * wh;
+    // The smallest C_k over the ζ grid, from the reference's pole formula.
+    let ck = ZETAS
+        .iter()
+        .map(|&z| reference::exact_coefficients_from_poles(wh / DT, z, DT).0)
+        .fold(f64::INFINITY, f64::min);
     let (q, n) = (S::RESOLUTION, STEPS as f64);
-    let dead_band = (0.5 / ck + 1.0) * q / amplitude;
+    let dead_band = (1.0 / ck + 1.0) * q / amplitude;
     let noise = n.sqrt() * 0.5 * q / wh / amplitude;
     let detuning = n * wh * coef_lsb / (4.0 * ck);
-    3.0 * (dead_band + noise + detuning) + 1e-9
+    let drag = 2.0 * n * fdt / ck * q / amplitude;
+    3.0 * (dead_band + noise + detuning + drag) + 1e-9
 }
 
 fn check_fixed<S: Scalar>(amplitude: f64, coef_lsb: f64) {

@@ -13,23 +13,23 @@
 //! each signed format is one LSB short of the negative end.
 //!
 //! The `fixed` crate provides the types, the conversions and the saturating add, but its
-//! products round toward −∞ and it has no "sum of two products, rounded once". The
+//! products round toward −∞ (which leaves limit cycles) and it has no "sum of two products, rounded once". The
 //! products here are therefore taken on the raw bits, with the rounding chosen in the
 //! [parent module](super).
 
 use super::{Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
-/// Rounds `p / 2^SHIFT` to nearest, ties away from zero, and saturates to the narrow type.
+/// Rounds `p / 2^SHIFT` toward zero and saturates to the narrow type.
 ///
-/// Adding `half − 1` for negative `p` (`p >> (BITS−1)` is −1 there) turns the arithmetic
-/// shift's floor into round-half-away-from-zero on both sides.
+/// The arithmetic shift floors; adding `2^SHIFT − 1` to a negative `p` first (the mask is
+/// all ones exactly when `p < 0`) turns that into truncation toward zero on both sides.
 macro_rules! narrow_fn {
     ($name:ident, $Wide:ty, $Narrow:ty, $SHIFT:expr) => {
         #[inline(always)]
         const fn $name(p: $Wide) -> $Narrow {
-            const HALF: $Wide = 1 << ($SHIFT - 1);
-            let r = (p + HALF + (p >> (<$Wide>::BITS - 1))) >> $SHIFT;
+            const ALMOST_ONE: $Wide = (1 << $SHIFT) - 1;
+            let r = (p + ((p >> (<$Wide>::BITS - 1)) & ALMOST_ONE)) >> $SHIFT;
             if r > <$Narrow>::MAX as $Wide {
                 <$Narrow>::MAX
             } else if r < <$Narrow>::MIN as $Wide {
@@ -124,20 +124,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn narrowing_rounds_half_away_from_zero() {
-        let half = 1i64 << 28;
+    fn narrowing_truncates_toward_zero() {
         let one = 1i64 << 29;
-        assert_eq!(narrow_q29(half), 1);
-        assert_eq!(narrow_q29(-half), -1);
-        assert_eq!(narrow_q29(half - 1), 0);
-        assert_eq!(narrow_q29(-half + 1), 0);
-        assert_eq!(narrow_q29(3 * half), 2);
-        assert_eq!(narrow_q29(-3 * half), -2);
+        assert_eq!(narrow_q29(one - 1), 0);
+        assert_eq!(narrow_q29(-one + 1), 0);
+        assert_eq!(narrow_q29(one), 1);
+        assert_eq!(narrow_q29(-one), -1);
         assert_eq!(narrow_q29(5 * one + 1), 5);
+        assert_eq!(narrow_q29(-5 * one - 1), -5);
+        assert_eq!(narrow_q29(-5 * one + 1), -4);
         assert_eq!(narrow_q29(i64::MAX / 2), i32::MAX);
         assert_eq!(narrow_q29(i64::MIN / 2), i32::MIN);
-        assert_eq!(narrow_q61(3i128 << 60), 2);
-        assert_eq!(narrow_q61(-(3i128 << 60)), -2);
+        assert_eq!(narrow_q61((3i128 << 61) - 1), 2);
+        assert_eq!(narrow_q61(-(3i128 << 61) + 1), -2);
     }
 
     #[test]
