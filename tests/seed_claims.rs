@@ -1,0 +1,224 @@
+//! The article's claims, checked against the library and the independent reference.
+//!
+//! 1. With `C_k = C_d = 1` the position reaches rest in one step for any offset,
+//!    velocity, mass and `dt` (eq. 12).
+//! 2. Full rest takes two steps (the erratum: the velocity after one step is `−x₀/dt`).
+//! 3. Behaviour depends only on `(C_k, C_d)`, not on `m` or `dt` (after eq. 13).
+//! 4. Stability on `[0, 1]²`, and the exact stability region around it.
+
+mod reference;
+
+use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
+
+/// A deterministic generator (64-bit LCG, top bits), so failures reproduce.
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// Log-uniform in [lo, hi].
+    fn log(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + self.next() * (hi.ln() - lo.ln())).exp()
+    }
+    fn signed(&mut self, scale: f64) -> f64 {
+        (2.0 * self.next() - 1.0) * scale
+    }
+}
+
+fn never() -> RestThreshold {
+    RestThreshold::new(1e-300, 1e-300).unwrap()
+}
+
+/// A value of backend `S` at offset `x0` from its target with velocity `v0`.
+fn value<S: Scalar>(tuning: Tuning, x0: f64, v0: f64, dt: f64) -> SpringValue<S, 1> {
+    let mut v = SpringValue::<S, 1>::new([S::from_f64(x0)], tuning, dt)
+        .unwrap()
+        .with_rest_threshold(never());
+    v.set_target([S::ZERO]).unwrap();
+    v.fling([S::from_f64(v0)]).unwrap();
+    v
+}
+
+fn rigid_rests_in_one_step_and_stops_in_two<S: Scalar>(scale: f64) {
+    let mut rng = Lcg(7);
+    for _ in 0..500 {
+        let (m, dt) = (rng.log(1e-3, 1e3), rng.log(1e-5, 1.0));
+        let (x0, v0) = (rng.signed(scale), rng.signed(scale));
+        // The reference, in physical units: position at rest after one step, moving at
+        // −x0/dt, fully at rest after two.
+        let mut p = reference::Particle1::new(x0, v0 * dt, m);
+        p.impulse_step(1.0, 1.0, dt);
+        assert!(p.x.abs() <= 1e-12 * x0.abs().max(v0.abs() * dt), "{p:?}");
+        assert!((p.v * dt + x0).abs() <= 1e-9 * x0.abs().max(1e-300));
+        p.impulse_step(1.0, 1.0, dt);
+        assert!(p.v.abs() * dt <= 1e-12 * x0.abs().max(1e-300));
+        // The library, exactly, in every backend.
+        let x0s = S::from_f64(x0);
+        let mut v = value::<S>(Tuning::rigid(), x0, v0 / dt, dt);
+        v.step();
+        assert_eq!(v.position(), [S::ZERO], "{} x0 {x0}", S::NAME);
+        assert_eq!(v.step_velocity(), [x0s.neg()], "{}", S::NAME);
+        v.step();
+        assert_eq!((v.position(), v.step_velocity()), ([S::ZERO], [S::ZERO]));
+    }
+}
+
+#[test]
+fn rigid_spring_rests_in_one_step_and_stops_in_two() {
+    rigid_rests_in_one_step_and_stops_in_two::<f64>(1e6);
+    rigid_rests_in_one_step_and_stops_in_two::<f32>(1e6);
+    rigid_rests_in_one_step_and_stops_in_two::<I32F32>(1e6);
+    rigid_rests_in_one_step_and_stops_in_two::<I16F16>(1e4);
+}
+
+/// The reference's force form, in physical units, for several masses and time steps,
+/// gives one and the same trajectory in step units `(x, v·dt)`: the behaviour belongs to
+/// `(C_k, C_d)` alone. The library's raw-coefficient value is the same trajectory
+/// whatever its `dt`, bit for bit.
+#[test]
+fn behaviour_depends_only_on_the_coefficients() {
+    let mut rng = Lcg(11);
+    for _ in 0..50 {
+        let (ck, cd) = (rng.next(), rng.next());
+        let (x0, u0) = (rng.signed(1.0), rng.signed(0.1));
+        let runs: Vec<Vec<(f64, f64)>> = [(1.0, 1e-3), (250.0, 0.1), (1e-3, 1e-5), (7.0, 1.0)]
+            .iter()
+            .map(|&(m, dt)| {
+                let mut p = reference::Particle1::new(x0, u0 / dt, m);
+                (0..500)
+                    .map(|_| {
+                        p.force_step(ck, cd, dt);
+                        (p.x, p.v * dt)
+                    })
+                    .collect()
+            })
+            .collect();
+        for run in &runs[1..] {
+            for (a, b) in run.iter().zip(&runs[0]) {
+                assert!((a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9);
+            }
+        }
+        let tuning = Tuning::from_coefficients(ck, cd).unwrap();
+        let trajectory = |dt: f64| {
+            let mut v = value::<f32>(tuning, x0, u0 / dt, dt);
+            (0..500)
+                .map(|_| {
+                    v.step();
+                    v.position()[0]
+                })
+                .collect::<Vec<_>>()
+        };
+        // u0/dt·dt is not always u0 in floating point, so compare two time steps whose
+        // round trip is exact.
+        assert_eq!(trajectory(0.25), trajectory(0.5));
+    }
+}
+
+/// The largest growth `max_n ‖Mⁿ‖` (infinity norm) of the reference's map matrix, the
+/// bound on how far a stable spring's state can swing above its start.
+fn transient_growth(ck: f64, cd: f64, steps: usize) -> f64 {
+    let m = reference::map_matrix(ck, cd);
+    let mut p = [[1.0, 0.0], [0.0, 1.0]];
+    let mut worst = 1.0f64;
+    for _ in 0..steps {
+        p = [
+            [
+                m[0][0] * p[0][0] + m[0][1] * p[1][0],
+                m[0][0] * p[0][1] + m[0][1] * p[1][1],
+            ],
+            [
+                m[1][0] * p[0][0] + m[1][1] * p[1][0],
+                m[1][0] * p[0][1] + m[1][1] * p[1][1],
+            ],
+        ];
+        let norm = (p[0][0].abs() + p[0][1].abs()).max(p[1][0].abs() + p[1][1].abs());
+        worst = worst.max(norm);
+    }
+    worst
+}
+
+/// On a grid of `[0, 1]²` (edges included) the library never swings beyond the
+/// reference's transient bound over 10 000 steps, and strictly inside it decays at the
+/// reference's spectral radius.
+fn stable_on_the_unit_square<S: Scalar>(x0: f64, slack: f64) {
+    let steps = 10_000;
+    for i in 0..=10 {
+        for j in 0..=10 {
+            let (ck, cd) = (i as f64 / 10.0, j as f64 / 10.0);
+            let bound = transient_growth(ck, cd, steps) * x0.abs();
+            let mut v = value::<S>(Tuning::from_coefficients(ck, cd).unwrap(), x0, 0.0, 1.0);
+            let mut peak = 0.0f64;
+            for _ in 0..steps {
+                v.step();
+                peak = peak.max(v.offset()[0].to_f64().abs());
+            }
+            assert!(
+                peak <= bound * (1.0 + 1e-6) + slack,
+                "{} ({ck}, {cd})",
+                S::NAME
+            );
+            let rho = reference::spectral_radius(ck, cd);
+            if rho < 0.99 {
+                let end = v.offset()[0].to_f64().abs();
+                assert!(end <= slack.max(1e-30), "{} ({ck}, {cd}): {end}", S::NAME);
+            }
+        }
+    }
+}
+
+#[test]
+fn every_backend_is_stable_on_the_unit_square() {
+    stable_on_the_unit_square::<f64>(1.0, 0.0);
+    stable_on_the_unit_square::<f32>(1.0, 0.0);
+    // Fixed point may stop in its dead band, 1/C_k LSB at most (C_k ≥ 0.1 here).
+    stable_on_the_unit_square::<I32F32>(1.0, 11.0 * I32F32::RESOLUTION);
+    stable_on_the_unit_square::<I16F16>(100.0, 11.0 * I16F16::RESOLUTION);
+}
+
+/// `from_coefficients_extended` accepts exactly the unit square plus the open region where
+/// the reference's spectral radius is below 1 (a band of 1e−9 around the boundary is not
+/// sampled, where rounding decides).
+#[test]
+fn the_extended_region_is_the_exact_stability_region() {
+    let mut checked = 0;
+    for i in -10..=420 {
+        for j in -10..=210 {
+            let (ck, cd) = (i as f64 / 100.0 + 1e-4, j as f64 / 100.0 + 1e-4);
+            let rho = reference::spectral_radius(ck, cd);
+            let in_square = (0.0..=1.0).contains(&ck) && (0.0..=1.0).contains(&cd);
+            if (rho - 1.0).abs() < 1e-9 && !in_square {
+                continue;
+            }
+            checked += 1;
+            let accepted = Tuning::from_coefficients_extended(ck, cd).is_ok();
+            assert_eq!(accepted, in_square || rho < 1.0, "({ck}, {cd}) ρ = {rho}");
+            if let Ok(t) = Tuning::from_coefficients_extended(ck, cd) {
+                assert!((t.spectral_radius() - rho).abs() < 1e-9, "({ck}, {cd})");
+            }
+        }
+    }
+    assert!(checked > 90_000);
+}
+
+/// "The spring will get *less* rigid and *less* stable if we increase C_k or C_d above
+/// 1": along the diagonal, the decay per step is fastest at 1 and slower beyond it.
+#[test]
+fn coefficients_above_one_are_less_rigid() {
+    let rho = |c: f64| {
+        Tuning::from_coefficients_extended(c, c)
+            .unwrap()
+            .spectral_radius()
+    };
+    assert_eq!(rho(1.0), 0.0);
+    let mut last = 0.0;
+    for c in [1.05, 1.1, 1.2, 1.3] {
+        let r = rho(c);
+        assert!(r > last, "{c}: {r}");
+        last = r;
+    }
+    assert!(rho(0.9) > 0.0);
+}
