@@ -75,3 +75,8 @@ pub use value::{SpringValue, SpringValue1};
 /// Re-export of the fixed-point types the backends are implemented for.
 #[cfg(feature = "fixed")]
 pub use fixed::types::{I16F16, I32F32};
+
+/// The README's examples run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
