@@ -10,7 +10,7 @@ use crate::rest::{RestBand, RestThreshold};
 use crate::sampling::Sampling;
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
-use crate::value::{advance, check_all};
+use crate::value::{advance, check_all, jump, offsets};
 use heapless::Vec;
 
 /// Up to `N` values of dimension `D` springing toward their targets, in backend `S`,
@@ -144,8 +144,8 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
     ///
     /// # Errors
     ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index;
-    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the target.
+    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index; otherwise as
+    /// [`SpringValue::set_target`](crate::SpringValue::set_target).
     ///
     /// ```
     /// use stiffspring::{SpringBatch, Tuning};
@@ -159,17 +159,19 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
     pub fn set_target(&mut self, index: usize, target: [S; D]) -> Result<(), Error> {
         self.check_index(index)?;
         check_all(&target, Parameter::Position)?;
-        let position = self.position(index)?;
+        let offset = offsets(&self.position(index)?, &target)?;
         let sampling = self.samplings[index];
-        for (k, t) in target.iter().enumerate() {
-            let offset = position[k].sub(*t);
-            let delta = offset.sub(self.offsets[index][k]);
-            let u = &mut self.step_velocities[index][k];
-            *u = sampling.shift(*u, delta);
-            self.offsets[index][k] = offset;
+        let mut moved = false;
+        let state = self.offsets[index]
+            .iter_mut()
+            .zip(&mut self.step_velocities[index]);
+        for ((x, u), to) in state.zip(offset) {
+            moved |= jump(x, u, &sampling, to);
         }
         self.targets[index] = target;
-        self.wake(index);
+        if moved {
+            self.wake(index);
+        }
         Ok(())
     }
 

@@ -164,13 +164,13 @@ impl<S: Scalar> BodyWeights<S> {
     pub fn from_inverse_masses(inv_a: f64, inv_b: f64) -> Result<Self, Error> {
         let inv_a = crate::error::non_negative(inv_a, Parameter::Mass)?;
         let inv_b = crate::error::non_negative(inv_b, Parameter::Mass)?;
-        let sum = inv_a + inv_b;
-        if sum <= 0.0 {
+        let largest = inv_a.max(inv_b);
+        if largest <= 0.0 {
             return Err(Error::NotPositive(Parameter::Mass));
         }
-        if !sum.is_finite() {
-            return Err(Error::NotFinite(Parameter::Mass));
-        }
+        // Scaled by the larger one, so the sum lies in [1, 2] and cannot overflow.
+        let (inv_a, inv_b) = (inv_a / largest, inv_b / largest);
+        let sum = inv_a + inv_b;
         // Each weight is formed from its own quotient, not as 1 − the other: for a mass
         // ratio of 1e6 the light body's weight is 1 − 1e−6 and the heavy body's 1e−6,
         // and forming it as a difference would cost it its precision.

@@ -71,6 +71,36 @@ pub(crate) fn advance<S: Scalar>(
     band.contains(x, u)
 }
 
+/// Moves one component's offset to `to` with its velocity kept (`u += P·Δx`, see the
+/// `sampling` module) and reports whether it moved. Shared by values and batches.
+pub(crate) fn jump<S: Scalar>(
+    offset: &mut S,
+    step_velocity: &mut S,
+    sampling: &Sampling<S>,
+    to: S,
+) -> bool {
+    let delta = to.sub(*offset);
+    *step_velocity = sampling.shift(*step_velocity, delta);
+    *offset = to;
+    delta != S::ZERO
+}
+
+/// The offsets `position − target`, each of which must stay within the backend's safe
+/// magnitude (in fixed point: not saturate).
+pub(crate) fn offsets<S: Scalar, const D: usize>(
+    position: &[S; D],
+    target: &[S; D],
+) -> Result<[S; D], Error> {
+    let mut out = [S::ZERO; D];
+    for ((o, p), t) in out.iter_mut().zip(position).zip(target) {
+        if (p.to_f64() - t.to_f64()).abs() > S::SAFE_MAGNITUDE - S::RESOLUTION {
+            return Err(Error::OutOfRange(Parameter::Position));
+        }
+        *o = p.sub(*t);
+    }
+    Ok(out)
+}
+
 pub(crate) fn check_all<S: Scalar, const D: usize>(
     values: &[S; D],
     what: Parameter,
@@ -137,8 +167,9 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         self
     }
 
-    /// Moves the target. The value keeps its position and its velocity and springs
-    /// toward the new target from there; a value at rest wakes up.
+    /// Moves the target. The value keeps its position (exactly in fixed point, to a
+    /// rounding in floats) and its velocity, and springs toward the new target from
+    /// there; a value at rest wakes up unless the target did not change.
     ///
     /// With raw coefficients the step velocity `u` is kept as it is. With a tuning from
     /// the exact map the value then samples exactly the continuous spring whose target
@@ -148,7 +179,10 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::OutOfRange`]; the value is then unchanged.
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the target, and
+    /// [`Error::OutOfRange`] when the offset `position − target` leaves
+    /// [`Scalar::SAFE_MAGNITUDE`] (in fixed point: when the value would have to cross more
+    /// than half the range); the value is then unchanged.
     ///
     /// [`Oscillator::start_weights`]: crate::Oscillator::start_weights
     ///
@@ -167,11 +201,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn set_target(&mut self, target: [S; D]) -> Result<(), Error> {
         check_all(&target, Parameter::Position)?;
-        let position = self.position();
-        let mut offset = [S::ZERO; D];
-        for (i, t) in target.iter().enumerate() {
-            offset[i] = position[i].sub(*t);
-        }
+        let offset = offsets(&self.position(), &target)?;
         self.target = target;
         self.move_offset(offset);
         Ok(())
@@ -181,7 +211,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::OutOfRange`]; the value is then unchanged.
+    /// As [`SpringValue::set_target`].
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
@@ -193,10 +223,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn set_position(&mut self, position: [S; D]) -> Result<(), Error> {
         check_all(&position, Parameter::Position)?;
-        let mut offset = [S::ZERO; D];
-        for (i, p) in position.iter().enumerate() {
-            offset[i] = p.sub(self.target[i]);
-        }
+        let offset = offsets(&position, &self.target)?;
         self.move_offset(offset);
         Ok(())
     }
@@ -412,10 +439,8 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn velocity(&self) -> [S; D] {
         let mut v = [S::ZERO; D];
-        for i in 0..D {
-            v[i] = self
-                .sampling
-                .velocity(self.offset[i], self.step_velocity[i]);
+        for ((v, x), u) in v.iter_mut().zip(&self.offset).zip(&self.step_velocity) {
+            *v = self.sampling.velocity(*x, *u);
         }
         v
     }
@@ -501,11 +526,13 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// decides.
     fn move_offset(&mut self, offset: [S; D]) {
         let mut moved = false;
-        for i in 0..D {
-            let delta = offset[i].sub(self.offset[i]);
-            moved |= delta != S::ZERO;
-            self.step_velocity[i] = self.sampling.shift(self.step_velocity[i], delta);
-            self.offset[i] = offset[i];
+        for ((x, u), to) in self
+            .offset
+            .iter_mut()
+            .zip(&mut self.step_velocity)
+            .zip(offset)
+        {
+            moved |= jump(x, u, &self.sampling, to);
         }
         self.at_rest &= !moved;
     }

@@ -141,24 +141,26 @@ mod tests {
 
     #[test]
     fn extreme_products_saturate_instead_of_wrapping() {
-        // The corners of both formats: every sign combination of the extreme factors.
+        // The corners of both formats: every sign combination of the extreme factors,
+        // against exact i128 arithmetic, whose `/` truncates toward zero.
+        let expected_q29 = |p: i128| (p / (1 << 29)).clamp(i32::MIN as i128, i32::MAX as i128);
         for c in [I3F29::MIN, I3F29::MAX] {
             for d in [I3F29::MIN, I3F29::MAX] {
                 for a in [I16F16::MIN, I16F16::MAX] {
                     for b in [I16F16::MIN, I16F16::MAX] {
-                        let exact = a.to_f64() * c.to_num::<f64>() - b.to_f64() * d.to_num::<f64>();
-                        let expected = I16F16::from_f64(exact);
-                        assert_eq!(I16F16::mul_coef_diff(a, c, b, d), expected);
+                        let p = a.to_bits() as i128 * c.to_bits() as i128
+                            - b.to_bits() as i128 * d.to_bits() as i128;
+                        let got = I16F16::mul_coef_diff(a, c, b, d).to_bits() as i128;
+                        assert_eq!(got, expected_q29(p));
                     }
                 }
             }
         }
         for c in [I3F61::MIN, I3F61::MAX] {
             for a in [I32F32::MIN, I32F32::MAX] {
-                let exact = a.to_f64() * c.to_num::<f64>();
-                assert_eq!(a.mul_coef(c), I32F32::from_f64(exact));
-                let diff = I32F32::mul_coef_diff(a, c, a.neg(), c);
-                assert_eq!(diff, I32F32::from_f64(2.0 * exact));
+                let p = a.to_bits() as i128 * c.to_bits() as i128;
+                let expected = (p / (1 << 61)).clamp(i64::MIN as i128, i64::MAX as i128);
+                assert_eq!(a.mul_coef(c).to_bits() as i128, expected);
             }
         }
         assert_eq!(I16F16::coef(-9.0), I3F29::MIN);

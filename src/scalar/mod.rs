@@ -96,7 +96,8 @@ pub trait Scalar: Sealed + Copy + PartialOrd + Debug + Default + Send + Sync + '
     /// Converts from `f64`, rounding to nearest and saturating at the ends of the range
     /// (NaN becomes zero). Set-up only.
     fn from_f64(value: f64) -> Self;
-    /// Converts to `f64` (exact for every backend but `f64` itself, which is unchanged).
+    /// Converts to `f64`: exact for `f32` and `I16F16`, rounded to nearest for `I32F32`
+    /// values beyond 53 significant bits.
     fn to_f64(self) -> f64;
     /// Converts a coefficient from `f64`, rounding to nearest and saturating to
     /// `[−4, 4)` in fixed point. Set-up only.

@@ -96,7 +96,8 @@ impl Oscillator {
     /// # Errors
     ///
     /// [`Error::NotFinite`], [`Error::NotPositive`] for `k` and `m`, [`Error::Negative`]
-    /// for `c`.
+    /// for `c`; [`Error::OutOfRange`] with [`Parameter::SpringConstant`] when `√(k/m)` or
+    /// `ζ` is not a finite positive `f64`.
     ///
     /// ```
     /// let o = stiffspring::Oscillator::from_physical(100.0, 2.0, 1.0)?;
@@ -109,7 +110,11 @@ impl Oscillator {
         let m = positive(m, Parameter::Mass)?;
         // ω = √(k/m) and ζ = c/(2√(km)) = c/(2mω); each quotient is formed once.
         let omega = sqrt(k / m);
-        Self::from_angular_frequency(omega, c / (2.0 * m * omega))
+        let zeta = c / (2.0 * m * omega);
+        if !(omega > 0.0 && omega.is_finite() && zeta.is_finite()) {
+            return Err(Error::OutOfRange(Parameter::SpringConstant));
+        }
+        Self::from_angular_frequency(omega, zeta)
     }
 
     /// The natural frequency in hertz.
@@ -152,7 +157,8 @@ impl Oscillator {
     ///
     /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`; [`Error::Aliased`] for an
     /// undamped oscillator at a multiple of half the sample rate;
-    /// [`Error::OutOfRange`] if `ω·dt` overflows.
+    /// [`Error::OutOfRange`] with [`Parameter::Frequency`] when `ω·dt` overflows or
+    /// `C_k` underflows (a frequency too high or too low for `f64` at this `dt`).
     ///
     /// ```
     /// use stiffspring::Oscillator;
@@ -166,9 +172,13 @@ impl Oscillator {
     pub fn tuning(&self, dt: f64) -> Result<Tuning, Error> {
         let dt = positive(dt, Parameter::TimeStep)?;
         let wh = self.omega * dt;
+        if !wh.is_finite() {
+            return Err(Error::OutOfRange(Parameter::Frequency));
+        }
         let z = self.zeta;
         let a = z * wh;
         let retention = exp(-2.0 * a);
+        let damping = -expm1(-2.0 * a);
         let stiffness = if z < 1.0 {
             let half_wdh = 0.5 * wh * sqrt((1.0 - z) * (1.0 + z));
             let decay = expm1(-a);
@@ -178,13 +188,14 @@ impl Oscillator {
             let decay = expm1(-wh);
             decay * decay
         } else {
-            let r2 = z + sqrt((z - 1.0) * (z + 1.0));
+            // √(ζ−1)·√(ζ+1) rather than √((ζ−1)(ζ+1)): the product overflows above 1e154.
+            let r2 = z + sqrt(z - 1.0) * sqrt(z + 1.0);
             expm1(-wh / r2) * expm1(-wh * r2)
         };
-        if !stiffness.is_finite() || !retention.is_finite() {
+        if !stiffness.is_finite() {
             return Err(Error::OutOfRange(Parameter::Frequency));
         }
-        Tuning::from_map(stiffness, retention)
+        Tuning::from_map(stiffness, damping, retention)
     }
 
     /// The step velocity `u₀ = x(0) − x(−dt)` that starts the discrete spring on the

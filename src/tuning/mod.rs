@@ -30,15 +30,16 @@ use crate::error::{Error, Parameter};
 
 /// A validated pair of spring coefficients `C_k` (stiffness) and `C_d` (damping).
 ///
-/// Internally the pair is kept as `C_k` and the *retention* `1 − C_d`, the fraction of the
-/// relative velocity a step keeps. The position-level step of a spring is then
+/// Besides `C_k` and `C_d` the tuning keeps the *retention* `1 − C_d`, the fraction of the
+/// relative velocity a step keeps. The position-level step of a spring is
 ///
 /// ```text
 /// u ← (1 − C_d)·u − C_k·x        x ← x + u        (u = v·dt)
 /// ```
 ///
-/// and keeping `1 − C_d` directly (computed as `e^{−2ζω·dt}` by the exact map) keeps a
-/// heavily damped spring accurate where `C_d` rounds to 1.
+/// Both are stored because each is the accurate one somewhere: the exact map computes
+/// `C_d = −expm1(−2ζω·dt)` and `1 − C_d = e^{−2ζω·dt}` separately, and a heavily damped
+/// spring needs the retention where `C_d` rounds to 1, while a raw `C_d` reads back exactly.
 ///
 /// Every constructor checks its input; a `Tuning` that exists is stable (or, for the
 /// undamped exact map, marginally stable with distinct poles on the unit circle).
@@ -64,6 +65,7 @@ use crate::error::{Error, Parameter};
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Tuning {
     stiffness: f64,
+    damping: f64,
     retention: f64,
     sampled: bool,
 }
@@ -90,6 +92,7 @@ impl Tuning {
     pub const fn rigid() -> Self {
         Tuning {
             stiffness: 1.0,
+            damping: 1.0,
             retention: 0.0,
             sampled: false,
         }
@@ -122,11 +125,7 @@ impl Tuning {
         if !(0.0..=1.0).contains(&cd) {
             return Err(Error::OutOfRange(Parameter::Damping));
         }
-        Ok(Tuning {
-            stiffness: ck,
-            retention: 1.0 - cd,
-            sampled: false,
-        })
+        Ok(Tuning::raw(ck, cd))
     }
 
     /// A tuning from raw coefficients, allowing values above 1 up to the exact
@@ -160,11 +159,7 @@ impl Tuning {
         let (ck, cd) = finite_pair(stiffness, damping)?;
         let in_square = (0.0..=1.0).contains(&ck) && (0.0..=1.0).contains(&cd);
         if in_square || is_strictly_stable(ck, cd) {
-            return Ok(Tuning {
-                stiffness: ck,
-                retention: 1.0 - cd,
-                sampled: false,
-            });
+            return Ok(Tuning::raw(ck, cd));
         }
         // Name the coefficient that is out of its own range first, else blame C_k.
         if !(0.0..2.0).contains(&cd) {
@@ -174,17 +169,32 @@ impl Tuning {
         }
     }
 
-    /// Builds a tuning from the stiffness and the retention `1 − C_d`, both already
-    /// computed accurately by the exact map. Accepts the stable region and its undamped
-    /// edge `C_d = 0, 0 < C_k < 4` (distinct poles on the unit circle); anything else is a
-    /// sampled oscillator whose poles alias onto `z = ±1`.
+    fn raw(stiffness: f64, damping: f64) -> Self {
+        Tuning {
+            stiffness,
+            damping,
+            retention: 1.0 - damping,
+            sampled: false,
+        }
+    }
+
+    /// Builds a tuning from `C_k`, `C_d` and `1 − C_d`, each already computed accurately by
+    /// the exact map. Accepts the stable region and its undamped edge `C_d = 0`,
+    /// `0 < C_k < 4` (distinct poles on the unit circle). An undamped oscillator whose
+    /// poles sit on `z = ±1` to within rounding (`C_k·(4 − C_k) = 16·sin²(ω·dt)` below
+    /// `16ε`, at `f·dt = k/2`) aliases; a `C_k` that underflowed to 0 is a frequency too
+    /// low for `f64` at this `dt`.
     #[cfg(feature = "libm")]
-    pub(crate) fn from_map(stiffness: f64, retention: f64) -> Result<Self, Error> {
-        let (ck, cd) = (stiffness, 1.0 - retention);
-        let undamped_edge = retention == 1.0 && ck > 0.0 && ck < 4.0;
-        if undamped_edge || is_strictly_stable(ck, cd) {
+    pub(crate) fn from_map(stiffness: f64, damping: f64, retention: f64) -> Result<Self, Error> {
+        let ck = stiffness;
+        if ck == 0.0 && damping > 0.0 {
+            return Err(Error::OutOfRange(Parameter::Frequency));
+        }
+        let undamped_edge = damping == 0.0 && ck * (4.0 - ck) > 16.0 * f64::EPSILON;
+        if undamped_edge || is_strictly_stable(ck, damping) {
             Ok(Tuning {
                 stiffness: ck,
+                damping,
                 retention,
                 sampled: true,
             })
@@ -198,6 +208,7 @@ impl Tuning {
     pub(crate) const fn from_parts(stiffness: f64, retention: f64, sampled: bool) -> Self {
         Tuning {
             stiffness,
+            damping: 1.0 - retention,
             retention,
             sampled,
         }
@@ -235,7 +246,7 @@ impl Tuning {
     /// assert_eq!(stiffspring::Tuning::rigid().damping(), 1.0);
     /// ```
     pub const fn damping(&self) -> f64 {
-        1.0 - self.retention
+        self.damping
     }
 
     /// The retention `1 − C_d`: the fraction of its relative velocity a spring keeps per
