@@ -43,8 +43,29 @@ pub enum Parameter {
     Velocity,
     /// A rest threshold.
     Threshold,
-    /// An index that names no element.
+    /// An index (or id) that names no live element.
     Index,
+    /// A spring's rest length.
+    RestLength,
+    /// An external acceleration (gravity).
+    Acceleration,
+    /// An impulse.
+    Impulse,
+    /// A knob's rotor moment of inertia.
+    Inertia,
+    /// A knob's motor torque limit.
+    TorqueLimit,
+    /// A knob's strength (detents, endstops, magnets, return spring), or the sum of the
+    /// strengths that act at once.
+    Strength,
+    /// A knob's detent width or detent count.
+    DetentWidth,
+    /// A knob's snap point (a fraction of the detent width).
+    SnapPoint,
+    /// A knob's hysteresis (an angle).
+    Hysteresis,
+    /// A knob's magnetic detent capture radius, or the spacing of its magnetic detents.
+    CaptureRadius,
 }
 
 /// Everything that can go wrong at set-up.
@@ -74,6 +95,15 @@ pub enum Error {
     OutOfRange(Parameter),
     /// A fixed-capacity container is full; nothing was added.
     CapacityFull,
+    /// A spring from a particle to itself.
+    SameParticle,
+    /// The operation needs a free particle and the particle is pinned (for example,
+    /// giving a pinned particle a velocity or an impulse).
+    Pinned,
+    /// A spring's coefficient exceeds the network's safe limit for the number of springs
+    /// its particles share (see [`network_limit`](crate::scene::network_limit)), and the
+    /// scene's policy is to reject; nothing was changed.
+    ExceedsNetworkLimit,
     /// An undamped oscillator whose frequency is a multiple of half the sample rate
     /// (`f·dt = k/2`): its sampled map has a double pole at `z = ±1`, which grows without
     /// bound from a general start, so no valid tuning reproduces it.
@@ -94,6 +124,9 @@ impl fmt::Display for Error {
             Error::Negative(p) => write!(f, "{p:?} must not be negative"),
             Error::OutOfRange(p) => write!(f, "{p:?} is outside its documented range"),
             Error::CapacityFull => f.write_str("capacity is full"),
+            Error::SameParticle => f.write_str("a spring needs two different particles"),
+            Error::Pinned => f.write_str("the particle is pinned"),
+            Error::ExceedsNetworkLimit => f.write_str("coefficient above the network's safe limit"),
             Error::Aliased => f.write_str("undamped oscillator aliases onto z = ±1 at this dt"),
             Error::NoContinuousEquivalent => {
                 f.write_str("tuning has no continuous oscillator equivalent")
@@ -112,6 +145,15 @@ pub(crate) fn positive(value: f64, what: Parameter) -> Result<f64, Error> {
         Err(Error::NotPositive(what))
     } else {
         Ok(value)
+    }
+}
+
+/// Checks that `value` is finite.
+pub(crate) fn finite(value: f64, what: Parameter) -> Result<f64, Error> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::NotFinite(what))
     }
 }
 

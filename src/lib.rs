@@ -48,9 +48,13 @@
 //! | `libm` | yes | the exact map, presets, analytic fling ([`Oscillator`]) |
 //! | `fixed` | no | the `I16F16` and `I32F32` backends |
 //! | `micromath` | no | fast approximate roots for the length kernels |
+//! | `hw-sqrt` | no | the `vsqrt.f32` length kernel on Cortex-M4F/M7/M33 (the only `unsafe`) |
 //! | `defmt` | no | `defmt::Format` for every public type |
 #![no_std]
-#![forbid(unsafe_code)]
+// The only `unsafe` is the call into the `vsqrt.f32` routine of `length::hardware`,
+// compiled only with the `hw-sqrt` feature; everywhere else it is forbidden outright.
+#![cfg_attr(not(feature = "hw-sqrt"), forbid(unsafe_code))]
+#![cfg_attr(feature = "hw-sqrt", deny(unsafe_code))]
 #![deny(missing_docs)]
 #![warn(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
@@ -58,9 +62,12 @@
 mod batch;
 mod error;
 pub mod kernel;
+pub mod knob;
+pub mod length;
 mod rest;
 mod sampling;
 mod scalar;
+pub mod scene;
 mod tuning;
 mod value;
 

@@ -43,15 +43,18 @@ macro_rules! narrow_fn {
 
 narrow_fn!(narrow_q29, i64, i32, 29);
 narrow_fn!(narrow_q61, i128, i64, 61);
+narrow_fn!(narrow_q16, i64, i32, 16);
+narrow_fn!(narrow_q32, i128, i64, 32);
 
 macro_rules! fixed_backend {
-    ($S:ty, $Coef:ty, $Wide:ty, $narrow:ident, $name:literal) => {
+    ($S:ty, $Coef:ty, $Wide:ty, $narrow:ident, $narrow_self:ident, $name:literal) => {
         impl Sealed for $S {}
 
         impl Scalar for $S {
             type Coef = $Coef;
 
             const ZERO: Self = <$S>::ZERO;
+            const ONE: Self = <$S>::ONE;
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 1.0 / (1u64 << <$S>::FRAC_NBITS) as f64;
             const SAFE_MAGNITUDE: f64 = (1u64 << <$S>::INT_NBITS - 1) as f64;
@@ -112,16 +115,53 @@ macro_rules! fixed_backend {
                     - b.to_bits() as $Wide * cb.to_bits() as $Wide;
                 <$S>::from_bits($narrow(p))
             }
+            #[inline(always)]
+            fn mul(self, rhs: Self) -> Self {
+                <$S>::from_bits($narrow_self(
+                    self.to_bits() as $Wide * rhs.to_bits() as $Wide,
+                ))
+            }
+            #[inline(always)]
+            fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self {
+                // Exact in the double-width integer for D ≤ 2 (each product is below
+                // 2^(2·BITS−2)); for larger D the sum saturates instead of wrapping.
+                let mut sum: $Wide = 0;
+                for k in 0..D {
+                    sum = sum.saturating_add(a[k].to_bits() as $Wide * b[k].to_bits() as $Wide);
+                }
+                <$S>::from_bits($narrow_self(sum))
+            }
         }
     };
 }
 
-fixed_backend!(I16F16, I3F29, i64, narrow_q29, "I16F16");
-fixed_backend!(I32F32, I3F61, i128, narrow_q61, "I32F32");
+fixed_backend!(I16F16, I3F29, i64, narrow_q29, narrow_q16, "I16F16");
+fixed_backend!(I32F32, I3F61, i128, narrow_q61, narrow_q32, "I32F32");
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn products_of_positions_truncate_and_saturate() {
+        let a = I16F16::from_num(1.5);
+        let b = I16F16::from_num(-2.25);
+        assert_eq!(a.mul(b), I16F16::from_num(-3.375));
+        // −1 LSB · 0.5 = −0.5 LSB truncates to 0, not to −1.
+        assert_eq!(
+            I16F16::from_bits(-1).mul(I16F16::from_num(0.5)),
+            I16F16::ZERO
+        );
+        assert_eq!(I16F16::MAX.mul(I16F16::MAX), I16F16::MAX);
+        assert_eq!(I16F16::MIN.mul(I16F16::MAX), I16F16::MIN);
+        let d = [I16F16::from_num(3), I16F16::from_num(4)];
+        assert_eq!(I16F16::dot(&d, &d), I16F16::from_num(25));
+        let big = [I16F16::MAX; 3];
+        assert_eq!(I16F16::dot(&big, &big), I16F16::MAX);
+        let d = [I32F32::from_num(-3), I32F32::from_num(4)];
+        assert_eq!(I32F32::dot(&d, &d), I32F32::from_num(25));
+        assert_eq!(I32F32::MIN.mul(I32F32::MIN), I32F32::MAX);
+    }
 
     #[test]
     fn narrowing_truncates_toward_zero() {

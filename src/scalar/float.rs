@@ -10,6 +10,7 @@ macro_rules! float_backend {
             type Coef = $F;
 
             const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 0.0;
             // 2^e, written out because `powi` is not in `core`: the headroom below
@@ -66,6 +67,18 @@ macro_rules! float_backend {
             #[inline(always)]
             fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self {
                 a * ca - b * cb
+            }
+            #[inline(always)]
+            fn mul(self, rhs: Self) -> Self {
+                self * rhs
+            }
+            #[inline(always)]
+            fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self {
+                let mut sum = 0.0;
+                for k in 0..D {
+                    sum += a[k] * b[k];
+                }
+                sum
             }
         }
     };

@@ -82,6 +82,8 @@ pub trait Scalar: Sealed + Copy + PartialOrd + Debug + Default + Send + Sync + '
 
     /// Zero.
     const ZERO: Self;
+    /// One.
+    const ONE: Self;
     /// A short name for tables: `"f32"`, `"I16F16"`, ...
     const NAME: &'static str;
     /// The smallest step between two values near zero, as `f64`; `0.0` for floats.
@@ -120,6 +122,11 @@ pub trait Scalar: Sealed + Copy + PartialOrd + Debug + Default + Send + Sync + '
     /// `a · ca − b · cb`, rounded once: the spring's velocity response
     /// `(1 − C_d)·u − C_k·x`.
     fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self;
+    /// `self · rhs`, rounded once (saturating in fixed point).
+    fn mul(self, rhs: Self) -> Self;
+    /// `Σ aᵢ·bᵢ`, rounded once (saturating in fixed point): projections onto a spring's
+    /// axis.
+    fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self;
 }
 
 #[cfg(test)]

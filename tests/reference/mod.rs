@@ -15,6 +15,10 @@
 //!   `-C_d·v` lacks the mass; the impulse is `-(m/dt)·C_k·x - m·C_d·v`.
 #![allow(dead_code)]
 
+/// Particle and angular-spring networks (distance springs in 1-3 D, angular
+/// springs; Gauss-Seidel and Jacobi steppers; invariants; scene builders).
+pub mod network;
+
 // ---------------------------------------------------------------------------
 // Coefficient limits and reduced mass
 // ---------------------------------------------------------------------------

@@ -1,0 +1,1 @@
+//! The haptic knob (work in progress).
