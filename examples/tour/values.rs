@@ -1,0 +1,324 @@
+//! UI values springing to their targets: every platform preset, every backend, a fling.
+
+use crate::plot::{Grid, Plot, Series};
+use crate::reference;
+use crate::table::{print, sci};
+use std::path::Path;
+use stiffspring::{
+    AndroidDamping, AndroidStiffness, I16F16, I32F32, Oscillator, ReactSpringPreset, RestThreshold,
+    Scalar, SpringValue, SwiftUiPreset,
+};
+
+/// A 60 Hz display, a value 100 px from its target.
+const DT: f64 = 1.0 / 60.0;
+const AMPLITUDE: f64 = 100.0;
+const MAX_STEPS: usize = 600;
+
+struct Case {
+    platform: &'static str,
+    name: String,
+    oscillator: Oscillator,
+}
+
+fn cases() -> Vec<Case> {
+    let mut out = Vec::new();
+    for p in SwiftUiPreset::ALL {
+        out.push(Case {
+            platform: "SwiftUI",
+            name: format!("{p:?}"),
+            oscillator: p.oscillator(),
+        });
+    }
+    for (s, d) in [
+        (AndroidStiffness::Medium, AndroidDamping::MediumBouncy),
+        (AndroidStiffness::Low, AndroidDamping::NoBouncy),
+        (AndroidStiffness::High, AndroidDamping::HighBouncy),
+        (AndroidStiffness::VeryLow, AndroidDamping::LowBouncy),
+    ] {
+        out.push(Case {
+            platform: "Android",
+            name: format!("{s:?}/{d:?}"),
+            oscillator: Oscillator::android(s.value(), d.value()).expect("constant preset"),
+        });
+    }
+    for p in ReactSpringPreset::ALL {
+        out.push(Case {
+            platform: "react-spring",
+            name: format!("{p:?}"),
+            oscillator: p.oscillator(),
+        });
+    }
+    out
+}
+
+/// A value of backend `S` released from rest at `AMPLITUDE` toward 0, with `threshold`.
+/// Returns the positions after each step (until rest or `MAX_STEPS`) and the steps to rest.
+fn release<S: Scalar>(osc: &Oscillator, threshold: RestThreshold) -> (Vec<f64>, Option<usize>) {
+    let tuning = osc.tuning(DT).expect("presets are well sampled at 60 Hz");
+    let mut value = SpringValue::<S, 1>::new([S::from_f64(AMPLITUDE)], tuning, DT)
+        .expect("valid start")
+        .with_rest_threshold(threshold);
+    value.set_target([S::ZERO]).expect("in range");
+    let mut xs = Vec::new();
+    for n in 1..=MAX_STEPS {
+        value.step();
+        xs.push(value.position()[0].to_f64());
+        if value.is_at_rest() {
+            return (xs, Some(n));
+        }
+    }
+    (xs, None)
+}
+
+/// A threshold no preset reaches in `MAX_STEPS`, to measure accuracy without snapping.
+fn never() -> RestThreshold {
+    RestThreshold::new(1e-300, 1e-300).expect("positive")
+}
+
+/// The analytic solution released from rest at `AMPLITUDE`, sampled after each step.
+fn analytic(osc: &Oscillator, steps: usize) -> Vec<f64> {
+    let (w, z) = (osc.angular_frequency(), osc.damping_ratio());
+    (1..=steps)
+        .map(|n| reference::analytic(AMPLITUDE, 0.0, w, z, n as f64 * DT).0)
+        .collect()
+}
+
+/// The reference model's discrete map with its own (pole-formula) coefficients and its
+/// own analytic start: the article's spring, independent of the library.
+fn reference_map(osc: &Oscillator, steps: usize) -> Vec<f64> {
+    let (w, z) = (osc.angular_frequency(), osc.damping_ratio());
+    let (ck, cd) = reference::exact_coefficients_from_poles(w, z, DT);
+    let mut x = AMPLITUDE;
+    let mut u = reference::u0_from_analytic(AMPLITUDE, 0.0, w, z, DT);
+    (0..steps)
+        .map(|_| {
+            reference::map_step(&mut x, &mut u, ck, cd);
+            x
+        })
+        .collect()
+}
+
+/// The naive first-order map `C_k = k·dt²/m`, `C_d = c·dt/m`, released with `u = 0`.
+fn naive_map(osc: &Oscillator, steps: usize) -> Vec<f64> {
+    let (w, z) = (osc.angular_frequency(), osc.damping_ratio());
+    let (ck, cd) = reference::naive_coefficients(w * w, 2.0 * z * w, 1.0, DT);
+    let (mut x, mut u) = (AMPLITUDE, 0.0);
+    (0..steps)
+        .map(|_| {
+            reference::map_step(&mut x, &mut u, ck, cd);
+            x
+        })
+        .collect()
+}
+
+fn worst(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+        / AMPLITUDE
+}
+
+/// Every preset in every backend: steps to rest at Android's pixel threshold, and the
+/// worst error over 600 steps (10 s) against the reference and the analytic solution.
+pub fn presets(dir: &Path) {
+    println!("UI values at 60 Hz, released 100 px from the target (errors relative to 100 px)");
+    let mut rows = Vec::new();
+    let mut panels: Vec<(&str, Plot)> = Vec::new();
+    for case in cases() {
+        let osc = &case.oscillator;
+        let steps = |n: Option<usize>| n.map_or("—".into(), |n| n.to_string());
+        let (_, rest32) = release::<f32>(osc, RestThreshold::PIXELS);
+        let (_, rest16) = release::<I16F16>(osc, RestThreshold::PIXELS);
+        let exact = analytic(osc, MAX_STEPS);
+        let reference = reference_map(osc, MAX_STEPS);
+        let x64 = release::<f64>(osc, never()).0;
+        let x32 = release::<f32>(osc, never()).0;
+        let x3232 = release::<I32F32>(osc, never()).0;
+        let x16 = release::<I16F16>(osc, never()).0;
+        let naive = naive_map(osc, MAX_STEPS);
+        let naive_error = worst(&naive, &exact);
+        rows.push(vec![
+            format!("{} {}", case.platform, case.name),
+            format!("{:.2}", osc.frequency()),
+            format!("{:.2}", osc.damping_ratio()),
+            format!("{} / {}", steps(rest32), steps(rest16)),
+            sci(worst(&x32, &reference)),
+            sci(worst(&x16, &reference)),
+            sci(worst(&x64, &exact)),
+            sci(worst(&x3232, &exact)),
+            sci(worst(&x32, &exact)),
+            sci(worst(&x16, &exact)),
+            if naive_error > 1.0 {
+                "unstable".into()
+            } else {
+                sci(naive_error)
+            },
+        ]);
+        let (shown, _) = release::<f32>(osc, RestThreshold::PIXELS);
+        let points = (0..=shown.len()).map(|n| {
+            let x = if n == 0 { AMPLITUDE } else { shown[n - 1] };
+            (n as f64 * DT, x)
+        });
+        let series = Series::line(case.name.clone(), points);
+        match panels.iter_mut().find(|(p, _)| *p == case.platform) {
+            Some((_, plot)) => *plot = plot.clone().series(series),
+            None => panels.push((
+                case.platform,
+                Plot::new(format!("{} presets (f32, 60 Hz)", case.platform))
+                    .x_label("time [s]")
+                    .y_label("offset [px]")
+                    .hline(0.0, "target")
+                    .series(series),
+            )),
+        }
+    }
+    print(
+        &[
+            "preset",
+            "f [Hz]",
+            "ζ",
+            "rest f32/I16F16",
+            "ref: f32",
+            "I16F16",
+            "analytic: f64",
+            "I32F32",
+            "f32",
+            "I16F16",
+            "naive map",
+        ],
+        &rows,
+    );
+    println!(
+        "(rest: steps until the value snaps to its target at 0.75 px and 46.9 px/s; ref: worst \
+         error over 600 steps against the reference model's own map; analytic: against the \
+         continuous spring; naive map: C_k = k·dt², C_d = c·dt released with u = 0, in f64)\n"
+    );
+    let mut grid = Grid::new("UI presets released 100 px from their target").columns(3);
+    for (_, plot) in panels {
+        grid = grid.plot(plot.size(460.0, 320.0));
+    }
+    let path = dir.join("presets.svg");
+    grid.write(&path).expect("write presets.svg");
+    println!("  wrote {}", path.display());
+    error_plot(dir);
+}
+
+/// How each backend's error grows over 10 s, for SwiftUI's `.bouncy`.
+fn error_plot(dir: &Path) {
+    let osc = SwiftUiPreset::Bouncy.oscillator();
+    let exact = analytic(&osc, MAX_STEPS);
+    let naive = naive_map(&osc, MAX_STEPS);
+    let series = |name: &str, xs: &[f64]| {
+        Series::line(
+            name.to_string(),
+            xs.iter()
+                .zip(&exact)
+                .enumerate()
+                .map(|(n, (x, e))| ((n + 1) as f64 * DT, (x - e).abs() / AMPLITUDE)),
+        )
+    };
+    let plot = Plot::new("|x − x_analytic| / amplitude, SwiftUI .bouncy at 60 Hz")
+        .x_label("time [s]")
+        .y_label("relative error")
+        .log_y()
+        .series(series("f64", &release::<f64>(&osc, never()).0))
+        .series(series("f32", &release::<f32>(&osc, never()).0))
+        .series(series("I32F32", &release::<I32F32>(&osc, never()).0))
+        .series(series("I16F16", &release::<I16F16>(&osc, never()).0))
+        .series(series("naive map (f64)", &naive).dashed());
+    let path = dir.join("errors.svg");
+    plot.write(&path).expect("write errors.svg");
+    println!("  wrote {}", path.display());
+}
+
+/// A fling: a value resting on its target is thrown at 800 px/s. The library starts it
+/// on the continuous trajectory (`u₀ = x(0) − x(−dt)`); the obvious `u₀ = v₀·dt` misses.
+pub fn fling(dir: &Path) {
+    const V0: f64 = 800.0;
+    const STEPS: usize = 120;
+    let osc = SwiftUiPreset::Bouncy.oscillator();
+    let tuning = osc.tuning(DT).expect("well sampled");
+    let (w, z) = (osc.angular_frequency(), osc.damping_ratio());
+    let exact: Vec<f64> = (1..=STEPS)
+        .map(|n| reference::analytic(0.0, V0, w, z, n as f64 * DT).0)
+        .collect();
+    let amplitude = exact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    fn flung<S: Scalar>(tuning: stiffspring::Tuning, steps: usize) -> Vec<f64> {
+        let mut v = SpringValue::<S, 1>::new([S::ZERO], tuning, DT)
+            .expect("valid")
+            .with_rest_threshold(RestThreshold::new(1e-300, 1e-300).expect("positive"));
+        v.fling([S::from_f64(V0)]).expect("in range");
+        (0..steps)
+            .map(|_| {
+                v.step();
+                v.position()[0].to_f64()
+            })
+            .collect()
+    }
+    // The same map started the obvious way, in the reference model.
+    let (ck, cd) = (tuning.stiffness(), tuning.damping());
+    let (mut x, mut u) = (0.0, V0 * DT);
+    let obvious: Vec<f64> = (0..STEPS)
+        .map(|_| {
+            reference::map_step(&mut x, &mut u, ck, cd);
+            x
+        })
+        .collect();
+    let err = |xs: &[f64]| {
+        xs.iter()
+            .zip(&exact)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+            / amplitude
+    };
+    let x32 = flung::<f32>(tuning, STEPS);
+    println!("A fling: SwiftUI .bouncy at 60 Hz thrown at 800 px/s from its target (2 s)");
+    print(
+        &["start", "f64", "f32", "I32F32", "I16F16"],
+        &[
+            vec![
+                "u₀ = x(0) − x(−dt) (library)".into(),
+                sci(err(&flung::<f64>(tuning, STEPS))),
+                sci(err(&x32)),
+                sci(err(&flung::<I32F32>(tuning, STEPS))),
+                sci(err(&flung::<I16F16>(tuning, STEPS))),
+            ],
+            vec![
+                "u₀ = v₀·dt (obvious)".into(),
+                sci(err(&obvious)),
+                "".into(),
+                "".into(),
+                "".into(),
+            ],
+        ],
+    );
+    println!("(worst |x − x_analytic| relative to the peak of {amplitude:.1} px)\n");
+    let t = |n: usize| (n + 1) as f64 * DT;
+    let fine: Vec<(f64, f64)> = (0..=STEPS * 8)
+        .map(|i| {
+            let time = i as f64 * DT / 8.0;
+            (time, reference::analytic(0.0, V0, w, z, time).0)
+        })
+        .collect();
+    let plot = Plot::new("A fling at 800 px/s, SwiftUI .bouncy at 60 Hz")
+        .x_label("time [s]")
+        .y_label("position [px]")
+        .hline(0.0, "target")
+        .series(Series::line("continuous spring", fine))
+        .series(Series::markers(
+            "stiffspring f32",
+            std::iter::once((0.0, 0.0)).chain(x32.iter().enumerate().map(|(n, x)| (t(n), *x))),
+        ))
+        .series(
+            Series::line(
+                "u₀ = v₀·dt",
+                std::iter::once((0.0, 0.0))
+                    .chain(obvious.iter().enumerate().map(|(n, x)| (t(n), *x))),
+            )
+            .dashed(),
+        );
+    let path = dir.join("fling.svg");
+    plot.write(&path).expect("write fling.svg");
+    println!("  wrote {}\n", path.display());
+}
