@@ -57,6 +57,7 @@ macro_rules! fixed_backend {
             const ONE: Self = <$S>::ONE;
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 1.0 / (1u64 << <$S>::FRAC_NBITS) as f64;
+            const NETWORK_MAGNITUDE: f64 = Self::SAFE_MAGNITUDE;
             const SAFE_MAGNITUDE: f64 = (1u64 << <$S>::INT_NBITS - 1) as f64;
 
             #[inline]
@@ -120,6 +121,10 @@ macro_rules! fixed_backend {
                 <$S>::from_bits($narrow_self(
                     self.to_bits() as $Wide * rhs.to_bits() as $Wide,
                 ))
+            }
+            #[inline(always)]
+            fn clamp_magnitude(self, _bound: Self) -> Self {
+                self
             }
             #[inline(always)]
             fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self {

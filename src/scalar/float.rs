@@ -3,7 +3,7 @@
 use super::{Scalar, Sealed};
 
 macro_rules! float_backend {
-    ($F:ty, $name:literal, $safe_exponent:literal) => {
+    ($F:ty, $name:literal, $safe_exponent:literal, $network_exponent:literal) => {
         impl Sealed for $F {}
 
         impl Scalar for $F {
@@ -16,6 +16,10 @@ macro_rules! float_backend {
             // 2^e, written out because `powi` is not in `core`: the headroom below
             // `MAX` absorbs the transient growth of any stable 2×2 map (see `SAFE_MAGNITUDE`).
             const SAFE_MAGNITUDE: f64 = f64::from_bits(((1023 + $safe_exponent) as u64) << 52);
+            // Σ dᵢ² of three separations up to 2·bound must stay below MAX:
+            // 3·(2^(e+1))² < 2^(2e+4) ≤ 2^127 (f32) or 2^1023 (f64).
+            const NETWORK_MAGNITUDE: f64 =
+                f64::from_bits(((1023 + $network_exponent) as u64) << 52);
 
             #[inline]
             fn from_f64(value: f64) -> Self {
@@ -73,6 +77,19 @@ macro_rules! float_backend {
                 self * rhs
             }
             #[inline(always)]
+            fn clamp_magnitude(self, bound: Self) -> Self {
+                // Written so that NaN fails every comparison and lands on 0.
+                if self.abs() <= bound {
+                    self
+                } else if self > 0.0 {
+                    bound
+                } else if self < 0.0 {
+                    -bound
+                } else {
+                    0.0
+                }
+            }
+            #[inline(always)]
             fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self {
                 let mut sum = 0.0;
                 for k in 0..D {
@@ -84,5 +101,5 @@ macro_rules! float_backend {
     };
 }
 
-float_backend!(f32, "f32", 100);
-float_backend!(f64, "f64", 1000);
+float_backend!(f32, "f32", 100, 60);
+float_backend!(f64, "f64", 1000, 500);

@@ -95,6 +95,12 @@ pub trait Scalar: Sealed + Copy + PartialOrd + Debug + Default + Send + Sync + '
     /// its whole range and saturates.
     const SAFE_MAGNITUDE: f64;
 
+    /// The largest magnitude of positions and step velocities in a
+    /// [`Scene`](crate::scene::Scene): small enough that a distance spring's squared
+    /// length stays finite (`2⁶⁰` for `f32`, `2⁵⁰⁰` for `f64`); the whole range in fixed
+    /// point, which saturates anyway.
+    const NETWORK_MAGNITUDE: f64;
+
     /// Converts from `f64`, rounding to nearest and saturating at the ends of the range
     /// (NaN becomes zero). Set-up only.
     fn from_f64(value: f64) -> Self;
@@ -127,6 +133,10 @@ pub trait Scalar: Sealed + Copy + PartialOrd + Debug + Default + Send + Sync + '
     /// `Σ aᵢ·bᵢ`, rounded once (saturating in fixed point): projections onto a spring's
     /// axis.
     fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self;
+    /// `self` limited to `[−bound, bound]`, with NaN mapped to zero: the safety net that
+    /// keeps an unstable network finite. The identity in fixed point, whose arithmetic
+    /// already saturates.
+    fn clamp_magnitude(self, bound: Self) -> Self;
 }
 
 #[cfg(test)]

@@ -199,6 +199,8 @@ where
     pub(crate) sleep_step_velocity: S,
     /// Steps an island must stay quiet to sleep; 0 when sleeping is off.
     pub(crate) sleep_steps: u32,
+    /// [`Scalar::NETWORK_MAGNITUDE`] in the backend.
+    pub(crate) bound: S,
 }
 
 impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<S>>
@@ -261,6 +263,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             gravity_step,
             sleep_step_velocity,
             sleep_steps,
+            bound: S::from_f64(S::NETWORK_MAGNITUDE),
         })
     }
 
@@ -704,9 +707,6 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         let mut u = [S::ZERO; D];
         for k in 0..D {
             u[k] = step_value(velocity[k].to_f64() * self.config.dt, Parameter::Velocity)?;
-        }
-        if velocity.iter().any(|v| !v.is_valid()) {
-            return Err(Error::NotFinite(Parameter::Velocity));
         }
         self.step_velocities[slot] = u;
         if self.wake_around(slot) {
@@ -1155,26 +1155,26 @@ impl Change {
     };
 }
 
-/// Positions must be finite and within the backend's safe magnitude.
+/// Positions must be finite and within the backend's network magnitude.
 fn check_position<S: Scalar, const D: usize>(position: &[S; D]) -> Result<(), Error> {
     for p in position {
-        if !p.is_valid() {
-            return Err(if p.to_f64().is_finite() {
-                Error::OutOfRange(Parameter::Position)
-            } else {
-                Error::NotFinite(Parameter::Position)
-            });
+        let v = p.to_f64();
+        if !v.is_finite() {
+            return Err(Error::NotFinite(Parameter::Position));
+        }
+        if v.abs() > S::NETWORK_MAGNITUDE {
+            return Err(Error::OutOfRange(Parameter::Position));
         }
     }
     Ok(())
 }
 
 /// A step quantity (`v·dt`, `u + j/m·dt`) converted to the backend, or an error if it is
-/// not finite or beyond the safe magnitude.
+/// not finite or beyond the network magnitude.
 fn step_value<S: Scalar>(value: f64, what: Parameter) -> Result<S, Error> {
     if !value.is_finite() {
         Err(Error::NotFinite(what))
-    } else if value.abs() > S::SAFE_MAGNITUDE {
+    } else if value.abs() > S::NETWORK_MAGNITUDE {
         Err(Error::OutOfRange(what))
     } else {
         Ok(S::from_f64(value))

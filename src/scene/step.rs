@@ -126,15 +126,21 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         }
     }
 
-    /// Stage 3: `x += u` for every awake free particle.
+    /// Stage 3: `x += u` for every awake free particle, within the network bound.
+    ///
+    /// The bound is the safety net of floating point: a network that the limit policy
+    /// let through but that is unstable anyway (a length kernel far outside its range, a
+    /// topology the article's rule misjudges) saturates at `±NETWORK_MAGNITUDE` instead of
+    /// overflowing, and a NaN made from an overflow inside the step is reset to 0, so no
+    /// position or velocity ever leaves `step()` infinite or NaN. Free in fixed point.
     fn integrate_positions(&mut self) {
+        let bound = self.bound;
         for &p in self.free.iter() {
-            let (x, u) = (
-                &mut self.positions[p as usize],
-                &self.step_velocities[p as usize],
-            );
+            let x = &mut self.positions[p as usize];
+            let u = &mut self.step_velocities[p as usize];
             for k in 0..D {
-                x[k] = x[k].add(u[k]);
+                u[k] = u[k].clamp_magnitude(bound);
+                x[k] = x[k].add(u[k]).clamp_magnitude(bound);
             }
         }
     }
