@@ -252,6 +252,7 @@ impl Plot {
             let q = (rect.px(xa.frac(p.0)?), rect.py(ya.frac(p.1)?));
             (q.0.is_finite() && q.1.is_finite()).then_some(q)
         };
+        let mut placed: Vec<(f64, f64, f64, f64)> = Vec::new(); // label boxes: x0, x1, y0, y1
         for (y, label) in &self.hlines {
             let Some(fy) = ya.frac(*y) else { continue };
             let py = rect.py(fy);
@@ -265,15 +266,33 @@ impl Plot {
                 rect.x + rect.w
             );
             if !label.is_empty() {
-                let ty = if py - 16.0 < rect.y {
-                    py + 13.0
-                } else {
-                    py - 5.0
+                // Right-aligned above the line; below it, or further left, if that would
+                // run into the top edge or an earlier label.
+                let tw = text_width(label, 10.5);
+                let mut right = rect.x + rect.w - 5.0;
+                let (ty, tx) = 'place: loop {
+                    let mut shift = f64::INFINITY;
+                    for ty in [py - 5.0, py + 13.0] {
+                        if ty - 10.0 < rect.y || ty > rect.y + rect.h - 2.0 {
+                            continue;
+                        }
+                        let hit = placed.iter().find(|b: &&(f64, f64, f64, f64)| {
+                            b.0 < right && right - tw < b.1 && b.2 < ty + 2.0 && ty - 10.0 < b.3
+                        });
+                        match hit {
+                            None => break 'place (ty, right),
+                            Some(b) => shift = shift.min(b.0 - 8.0),
+                        }
+                    }
+                    if !shift.is_finite() || shift - tw < rect.x {
+                        break (if py - 15.0 < rect.y { py + 13.0 } else { py - 5.0 }, right);
+                    }
+                    right = shift;
                 };
+                placed.push((tx - tw, tx, ty - 10.0, ty + 2.0));
                 let _ = writeln!(
                     out,
-                    r##"<text x="{:.1}" y="{ty:.1}" font-size="10.5" fill="#444444" text-anchor="end" stroke="white" stroke-width="3" stroke-linejoin="round" paint-order="stroke">{}</text>"##,
-                    rect.x + rect.w - 5.0,
+                    r##"<text x="{tx:.1}" y="{ty:.1}" font-size="10.5" fill="#444444" text-anchor="end" stroke="white" stroke-width="3" stroke-linejoin="round" paint-order="stroke">{}</text>"##,
                     escape(label)
                 );
             }
@@ -689,7 +708,7 @@ fn scaled(k: i64, e: i32) -> f64 {
 fn fmt_tick(v: f64, m: i64, e: i32) -> String {
     let step = scaled(m, e);
     if v.abs() < step * 1e-6 {
-        return "0".into();
+        return if (-4..0).contains(&e) { format!("{:.*}", (-e) as usize, 0.0) } else { "0".into() };
     }
     if !(-4..6).contains(&e) {
         let ve = v.abs().log10().floor() as i32;
@@ -1003,12 +1022,11 @@ fn draw_labels(out: &mut String, r: &Rect, width: f64, title: &str, x_label: &st
     }
 }
 
+/// A clipped segment: its two ends, and whether each end was cut off.
+type Clipped = ((f64, f64), (f64, f64), bool, bool);
+
 /// Liang–Barsky: the part of segment p-q inside `r`, and whether p or q were cut off.
-fn clip_segment(
-    p: (f64, f64),
-    q: (f64, f64),
-    r: &Rect,
-) -> Option<((f64, f64), (f64, f64), bool, bool)> {
+fn clip_segment(p: (f64, f64), q: (f64, f64), r: &Rect) -> Option<Clipped> {
     let (dx, dy) = (q.0 - p.0, q.1 - p.1);
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
     for (den, num) in [
@@ -1064,33 +1082,31 @@ fn polyline_path(pts: &[Option<(f64, f64)>], r: &Rect, occupied: &mut Vec<(f64, 
             prev = None;
             continue;
         };
-        if let Some(p) = prev {
-            if let Some((a, b, cut_a, cut_b)) = clip_segment(p, q, r) {
-                if cut_a || last.is_none() {
-                    close(&mut d, &mut last, &mut pending);
-                    let _ = write!(d, "M{:.1},{:.1}L", a.0, a.1);
-                    last = Some(a);
-                }
-                let l = last.unwrap_or(a);
-                if (b.0 - l.0).abs() < 0.34 && (b.1 - l.1).abs() < 0.34 {
-                    pending = Some(b);
-                } else {
-                    let _ = write!(d, " {:.1},{:.1}", b.0, b.1);
-                    // Samples every ~6 px along the segment, for legend placement.
-                    let len = ((b.0 - l.0).hypot(b.1 - l.1) / 6.0).ceil().min(200.0) as usize;
-                    if budget > 0 {
-                        for i in 0..len.max(1) {
-                            let t = i as f64 / len.max(1) as f64;
-                            occupied.push((l.0 + t * (b.0 - l.0), l.1 + t * (b.1 - l.1)));
-                        }
-                        budget = budget.saturating_sub(len.max(1));
+        if let Some((a, b, cut_a, cut_b)) = prev.and_then(|p| clip_segment(p, q, r)) {
+            if cut_a || last.is_none() {
+                close(&mut d, &mut last, &mut pending);
+                let _ = write!(d, "M{:.1},{:.1}L", a.0, a.1);
+                last = Some(a);
+            }
+            let l = last.unwrap_or(a);
+            if (b.0 - l.0).abs() < 0.34 && (b.1 - l.1).abs() < 0.34 {
+                pending = Some(b);
+            } else {
+                let _ = write!(d, " {:.1},{:.1}", b.0, b.1);
+                // Samples every ~6 px along the segment, for legend placement.
+                let len = ((b.0 - l.0).hypot(b.1 - l.1) / 6.0).ceil().min(200.0) as usize;
+                if budget > 0 {
+                    for i in 0..len.max(1) {
+                        let t = i as f64 / len.max(1) as f64;
+                        occupied.push((l.0 + t * (b.0 - l.0), l.1 + t * (b.1 - l.1)));
                     }
-                    last = Some(b);
-                    pending = None;
+                    budget = budget.saturating_sub(len.max(1));
                 }
-                if cut_b {
-                    close(&mut d, &mut last, &mut pending);
-                }
+                last = Some(b);
+                pending = None;
+            }
+            if cut_b {
+                close(&mut d, &mut last, &mut pending);
             }
         }
         prev = Some(q);
