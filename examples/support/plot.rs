@@ -65,6 +65,8 @@ pub struct Series {
     pub dashed: bool,
     /// Override the automatic palette colour (any SVG colour, e.g. `"#000000"`).
     pub color: Option<String>,
+    /// A short text beside each point (empty: none), in the series' colour.
+    pub labels: Vec<String>,
 }
 
 impl Series {
@@ -79,6 +81,7 @@ impl Series {
             style,
             dashed: false,
             color: None,
+            labels: Vec::new(),
         }
     }
     pub fn line(name: impl Into<String>, points: impl IntoIterator<Item = (f64, f64)>) -> Self {
@@ -99,6 +102,11 @@ impl Series {
     }
     pub fn color(mut self, color: impl Into<String>) -> Self {
         self.color = Some(color.into());
+        self
+    }
+    /// Labels the points, one text per point in order (a scatter plot of named things).
+    pub fn labels(mut self, labels: impl IntoIterator<Item = impl Into<String>>) -> Self {
+        self.labels = labels.into_iter().map(Into::into).collect();
         self
     }
 }
@@ -253,6 +261,11 @@ impl Plot {
             (q.0.is_finite() && q.1.is_finite()).then_some(q)
         };
         let mut placed: Vec<(f64, f64, f64, f64)> = Vec::new(); // label boxes: x0, x1, y0, y1
+        let line_ys: Vec<f64> = self
+            .hlines
+            .iter()
+            .filter_map(|(y, _)| ya.frac(*y).map(|f| rect.py(f)))
+            .collect();
         for (y, label) in &self.hlines {
             let Some(fy) = ya.frac(*y) else { continue };
             let py = rect.py(fy);
@@ -272,7 +285,21 @@ impl Plot {
                 let mut right = rect.x + rect.w - 5.0;
                 let (ty, tx) = 'place: loop {
                     let mut shift = f64::INFINITY;
-                    for ty in [py - 5.0, py + 13.0] {
+                    // Above the line, unless another line is too close above and there
+                    // is room below.
+                    let gap = |below: bool| {
+                        line_ys
+                            .iter()
+                            .map(|&o| if below { o - py } else { py - o })
+                            .filter(|&d| d > 0.5)
+                            .fold(f64::INFINITY, f64::min)
+                    };
+                    let order = if gap(false) < 15.0 && gap(true) >= 15.0 {
+                        [py + 13.0, py - 5.0]
+                    } else {
+                        [py - 5.0, py + 13.0]
+                    };
+                    for ty in order {
                         if ty - 10.0 < rect.y || ty > rect.y + rect.h - 2.0 {
                             continue;
                         }
@@ -285,7 +312,14 @@ impl Plot {
                         }
                     }
                     if !shift.is_finite() || shift - tw < rect.x {
-                        break (if py - 15.0 < rect.y { py + 13.0 } else { py - 5.0 }, right);
+                        break (
+                            if py - 15.0 < rect.y {
+                                py + 13.0
+                            } else {
+                                py - 5.0
+                            },
+                            right,
+                        );
                     }
                     right = shift;
                 };
@@ -329,6 +363,23 @@ impl Plot {
             }
             if marker {
                 draw_markers(out, &pts, &rect, &color, line, &mut occupied);
+            }
+            for (p, label) in pts.iter().zip(&s.labels) {
+                let Some(p) = p.filter(|p| rect.contains(*p)) else {
+                    continue;
+                };
+                if label.is_empty() {
+                    continue;
+                }
+                let _ = writeln!(
+                    out,
+                    r##"<text x="{:.1}" y="{:.1}" font-size="9.5" fill="{}" stroke="white" stroke-width="2.5" stroke-linejoin="round" paint-order="stroke">{}</text>"##,
+                    p.0 + 4.5,
+                    p.1 - 4.0,
+                    escape(&color),
+                    escape(label)
+                );
+                occupied.push((p.0 + 4.5 + text_width(label, 9.5) / 2.0, p.1 - 7.0));
             }
             if !s.name.is_empty() {
                 legend.push(LegendEntry {
@@ -708,7 +759,11 @@ fn scaled(k: i64, e: i32) -> f64 {
 fn fmt_tick(v: f64, m: i64, e: i32) -> String {
     let step = scaled(m, e);
     if v.abs() < step * 1e-6 {
-        return if (-4..0).contains(&e) { format!("{:.*}", (-e) as usize, 0.0) } else { "0".into() };
+        return if (-4..0).contains(&e) {
+            format!("{:.*}", (-e) as usize, 0.0)
+        } else {
+            "0".into()
+        };
     }
     if !(-4..6).contains(&e) {
         let ve = v.abs().log10().floor() as i32;
@@ -1323,14 +1378,14 @@ mod tests {
         let a = Axis::build(false, Some((0.0, 1.0)), None, 5);
         assert_eq!(
             labels(&a),
-            ["0", "0.2", "0.4", "0.6", "0.8", "1"].map(String::from)
+            ["0.0", "0.2", "0.4", "0.6", "0.8", "1.0"].map(String::from)
         );
         assert_eq!((a.lo, a.hi), (0.0, 1.0));
 
         let a = Axis::build(false, Some((-0.83, 1.02)), None, 5);
         assert_eq!(
             labels(&a),
-            ["-1", "-0.5", "0", "0.5", "1", "1.5"].map(String::from)
+            ["-1.0", "-0.5", "0.0", "0.5", "1.0", "1.5"].map(String::from)
         );
         assert_eq!((a.lo, a.hi), (-1.0, 1.5));
 
@@ -1487,6 +1542,22 @@ mod tests {
         assert_well_formed(&svg);
         assert!(svg.contains("t = 0.3 s"));
         assert_well_formed(&render_frames("", &[], &[], &[]));
+    }
+
+    #[test]
+    fn close_reference_lines_get_separate_labels() {
+        let svg = Plot::new("")
+            .series(Series::line("", vec![(0.0, 0.0), (1.0, 1.2)]))
+            .hline(1.0, "target")
+            .hline(1.02, "upper")
+            .render();
+        let y_of = |label: &str| -> f64 {
+            let end = svg.find(&format!(">{label}</text>")).unwrap();
+            let start = svg[..end].rfind(" y=\"").unwrap() + 4;
+            svg[start..].split('"').next().unwrap().parse().unwrap()
+        };
+        // The upper line's label above the lower one's, with no overlap.
+        assert!(y_of("target") - y_of("upper") >= 12.0);
     }
 
     #[test]
