@@ -8,8 +8,8 @@
 //! | kernel | extension | axis | cost | error |
 //! |---|---|---|---|---|
 //! | [`Exact`] | `√(d·d) − L` | `d/|d|` | a root and a division | rounding |
-//! | [`Approximate`] (`micromath`, f32) | `(d·d)·r − L` | `d·r` | no root, no division | ~3.4 % in `r` |
-//! | [`ApproximateNewton`] (`micromath`, f32) | as above, `r` refined by one Newton step | | 4 multiplies more | ~0.2 % |
+//! | `Approximate` (`micromath`, f32) | `(d·d)·r − L` | `d·r` | no root, no division | ~3.4 % in `r` |
+//! | `ApproximateNewton` (`micromath`, f32) | as above, `r` refined by one Newton step | | 4 multiplies more | ~0.2 % |
 //! | `HardwareSqrt` (`hw-sqrt`, Cortex-M4F/M7/M33 only) | `vsqrt.f32` | `d/|d|` | one `vsqrt`, one `vdiv` | rounding |
 //! | [`Linearised`] | `(d·d − L²)/(2L)` | `d/L` | no root, no division | second order in `x/L` |
 //!

@@ -1,52 +1,4 @@
-//! The arithmetic the whole crate is generic over.
-//!
-//! [`Scalar`] is implemented for `f32` (Cortex-M4F/M7/M33, which have a single-precision
-//! FPU), `f64` (host tools and tests) and, with the `fixed` feature, for
-//! [`fixed::types::I16F16`] and [`fixed::types::I32F32`] (Cortex-M0/M0+, which have no
-//! FPU at all).
-//!
-//! Two formats per backend:
-//!
-//! - **Positions and per-step velocities** (`u = v·dt`) are `Self`.
-//! - **Coefficients** (`C_k`, `C_d`, the two-body weights `w_a`, `w_b`) are
-//!   [`Scalar::Coef`]. In fixed point they keep many more fractional bits than
-//!   positions: a 1 Hz spring stepped at 1 kHz has `C_k ≈ 3.9e−5`, which is only 3 LSB in
-//!   Q16.16 (a 16 % error in stiffness) but 21 000 LSB in Q3.29.
-//!
-//! Every fixed-point operation saturates; none wraps. Float ↔ fixed conversion happens
-//! at set-up only ([`Scalar::from_f64`], [`Scalar::coef`]); the stepping code never
-//! touches a float when the backend is fixed point.
-//!
-//! # Rounding in fixed point
-//!
-//! Products of a position and a coefficient are computed exactly in a double-width
-//! integer, summed there, and rounded **once**, toward zero. The choice comes from the
-//! measurements in `tests/fixed_rounding.rs` (run
-//! `cargo test --release --test fixed_rounding -- --nocapture` for the table): 324
-//! trajectories, over exact-map tunings and lightly damped raw ones, each run until its
-//! state repeats.
-//!
-//! | rounding | ends at rest | limit cycles | worst rest offset | worst cycle |
-//! |---|---|---|---|---|
-//! | toward −∞ (the `fixed` crate's) | 228 | 96 | `1/C_k` LSB | 144 half-bands, 322 LSB/step |
-//! | to nearest (any tie rule) | 192 | 132 | `0.5/C_k` LSB | 1795 half-bands, 1004 LSB/step |
-//! | **toward zero** | **324** | **0** | **`1/C_k` LSB** | none |
-//!
-//! (A half-band is `0.5/C_k` LSB.) Round-to-nearest stops closer to the target but lets a
-//! lightly damped spring ring forever in a limit cycle hundreds of LSB wide, which no rest
-//! threshold can tell from motion. Truncation toward zero never adds energy: every
-//! measured trajectory ended on a fixed point with `u = 0` inside the dead band
-//! `|x| < 1/C_k` LSB. It is also symmetric, so a trajectory started from `−x₀` is exactly
-//! the negation of the one from `x₀`, and two equal masses get exactly opposite velocity
-//! changes (their momentum is conserved to the bit).
-//!
-//! The price is a small drag: truncation shortens `u` by half an LSB per step on
-//! average, a Coulomb friction that costs a lightly damped spring `2/C_k` LSB of amplitude
-//! per cycle (bounded in `tests/exact_map.rs`). A spring with `C_d = 0` keeps `u·1`
-//! exactly, so its map stays an integer bijection and loses nothing.
-//!
-//! The rest detection of [`SpringValue`](crate::SpringValue) widens its position threshold
-//! to cover the dead band, so a fixed-point value always settles.
+//! The arithmetic the whole crate is generic over: see [`Scalar`].
 
 #[cfg(feature = "fixed")]
 mod fixed_point;
@@ -65,7 +17,55 @@ pub(crate) use sealed::Sealed;
 ///
 /// The methods are the complete arithmetic of the hot loops. Floats use plain IEEE
 /// arithmetic; fixed point saturates at the ends of its range and truncates products
-/// toward zero, see the [module docs](self).
+/// toward zero, as measured below.
+///
+/// [`Scalar`] is implemented for `f32` (Cortex-M4F/M7/M33, which have a single-precision
+/// FPU), `f64` (host tools and tests) and, with the `fixed` feature, for
+/// `fixed::types::I16F16` and `fixed::types::I32F32` (Cortex-M0/M0+, which have no
+/// FPU at all).
+///
+/// Two formats per backend:
+///
+/// - **Positions and per-step velocities** (`u = v·dt`) are `Self`.
+/// - **Coefficients** (`C_k`, `C_d`, the two-body weights `w_a`, `w_b`) are
+///   [`Scalar::Coef`]. In fixed point they keep many more fractional bits than
+///   positions: a 1 Hz spring stepped at 1 kHz has `C_k ≈ 3.9e−5`, which is only 3 LSB in
+///   Q16.16 (a 16 % error in stiffness) but 21 000 LSB in Q3.29.
+///
+/// Every fixed-point operation saturates; none wraps. Float ↔ fixed conversion happens
+/// at set-up only ([`Scalar::from_f64`], [`Scalar::coef`]); the stepping code never
+/// touches a float when the backend is fixed point.
+///
+/// # Rounding in fixed point
+///
+/// Products of a position and a coefficient are computed exactly in a double-width
+/// integer, summed there, and rounded **once**, toward zero. The choice comes from the
+/// measurements in `tests/fixed_rounding.rs` (run
+/// `cargo test --release --test fixed_rounding -- --nocapture` for the table): 324
+/// trajectories, over exact-map tunings and lightly damped raw ones, each run until its
+/// state repeats.
+///
+/// | rounding | ends at rest | limit cycles | worst rest offset | worst cycle |
+/// |---|---|---|---|---|
+/// | toward −∞ (the `fixed` crate's) | 228 | 96 | `1/C_k` LSB | 144 half-bands, 322 LSB/step |
+/// | to nearest (any tie rule) | 192 | 132 | `0.5/C_k` LSB | 1795 half-bands, 1004 LSB/step |
+/// | **toward zero** | **324** | **0** | **`1/C_k` LSB** | none |
+///
+/// (A half-band is `0.5/C_k` LSB.) Round-to-nearest stops closer to the target but lets a
+/// lightly damped spring ring forever in a limit cycle hundreds of LSB wide, which no rest
+/// threshold can tell from motion. Truncation toward zero never adds energy: every
+/// measured trajectory ended on a fixed point with `u = 0` inside the dead band
+/// `|x| < 1/C_k` LSB. It is also symmetric, so a trajectory started from `−x₀` is exactly
+/// the negation of the one from `x₀`, and two equal masses get exactly opposite velocity
+/// changes (their momentum is conserved to the bit).
+///
+/// The price is a small drag: truncation shortens `u` by half an LSB per step on
+/// average, a Coulomb friction that costs a lightly damped spring `2/C_k` LSB of amplitude
+/// per cycle (bounded in `tests/exact_map.rs`). A spring with `C_d = 0` keeps `u·1`
+/// exactly, so its map stays an integer bijection and loses nothing.
+///
+/// The rest detection of [`SpringValue`](crate::SpringValue) widens its position threshold
+/// to cover the dead band, so a fixed-point value always settles.
 ///
 /// ```
 /// use stiffspring::Scalar;

@@ -6,7 +6,7 @@
 //!
 //! - each particle's inverse mass (0 for a pinned particle);
 //! - each spring's coefficients, its two-body weights `w_a`, `w_b` (eq. 17–20 through
-//!   [`BodyWeights`](crate::kernel::BodyWeights)), and what its length kernel needs;
+//!   [`BodyWeights`]), and what its length kernel needs;
 //! - which springs have a pinned end (they skip the weights and the pinned side), and
 //!   which connect two pinned particles (they are dropped: they could move nothing);
 //! - which groups of connected particles ("islands") are awake.
