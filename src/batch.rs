@@ -35,6 +35,7 @@ use heapless::Vec;
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SpringBatch<S: Scalar, const N: usize, const D: usize = 1> {
     offsets: Vec<[S; D], N>,
     step_velocities: Vec<[S; D], N>,
@@ -249,14 +250,21 @@ impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn step(&mut self) {
+        // Every per-value vector has the same length; slicing them to it once lets the
+        // compiler check each awake index against the bound once instead of four times.
+        let n = self.offsets.len();
+        let offsets = &mut self.offsets[..n];
+        let step_velocities = &mut self.step_velocities[..n];
+        let all_coefficients = &self.coefficients[..n];
+        let bands = &self.bands[..n];
         let mut slot = 0;
         while slot < self.awake.len() {
             let i = self.awake[slot];
             let mut inside = true;
-            let coefficients = &self.coefficients[i];
-            let band = &self.bands[i];
-            let offset = &mut self.offsets[i];
-            let step_velocity = &mut self.step_velocities[i];
+            let coefficients = &all_coefficients[i];
+            let band = &bands[i];
+            let offset = &mut offsets[i];
+            let step_velocity = &mut step_velocities[i];
             for k in 0..D {
                 inside &= advance(&mut offset[k], &mut step_velocity[k], coefficients, band);
             }

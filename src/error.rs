@@ -66,6 +66,8 @@ pub enum Parameter {
     Hysteresis,
     /// A knob's magnetic detent capture radius, or the spacing of its magnetic detents.
     CaptureRadius,
+    /// A knob's encoder resolution (an angle per count).
+    EncoderResolution,
 }
 
 /// Everything that can go wrong at set-up.

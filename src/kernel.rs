@@ -38,6 +38,7 @@ use crate::tuning::Tuning;
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Coefficients<S: Scalar> {
     stiffness: S::Coef,
     retention: S::Coef,
@@ -138,6 +139,7 @@ impl<S: Scalar> Coefficients<S> {
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct BodyWeights<S: Scalar> {
     a: S::Coef,
     b: S::Coef,

@@ -39,6 +39,9 @@
 //! - [`kernel`]: the two-body kernel every spring in the crate runs through.
 //! - [`SpringValue`], [`SpringBatch`]: values that spring toward targets; [`RestThreshold`]:
 //!   when they count as settled.
+//! - [`Knob`], [`KnobConfig`]: a haptic knob (detents, endstops, magnetic detents, a
+//!   return spring) run from the measured angle in a 1–10 kHz control loop, inside the
+//!   closed-loop stability region of a sampled rotor ([`knob::stability`]).
 //! - [`Error`]: what set-up can reject. Stepping never fails.
 //!
 //! ## Features
@@ -73,6 +76,7 @@ mod value;
 
 pub use batch::SpringBatch;
 pub use error::{Error, Parameter};
+pub use knob::{Knob, KnobConfig, KnobOutput};
 pub use rest::RestThreshold;
 pub use scalar::Scalar;
 pub use tuning::Tuning;

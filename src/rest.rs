@@ -108,9 +108,15 @@ impl Default for RestThreshold {
 /// threshold and the *step* velocity threshold (`velocity·dt`), both widened to cover
 /// the fixed-point dead band so that every trajectory reaches it.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct RestBand<S: Scalar> {
     pub(crate) offset: S,
     pub(crate) step_velocity: S,
+    /// [`Scalar::SAFE_MAGNITUDE`] in the backend: the bound on a value's offset.
+    pub(crate) limit: S,
+    /// The lower ends of the band for fixed point (see [`RestBand::contains`]).
+    offset_low: S,
+    step_velocity_low: S,
 }
 
 impl<S: Scalar> RestBand<S> {
@@ -122,20 +128,64 @@ impl<S: Scalar> RestBand<S> {
         // (tests/fixed_rounding.rs measures it). One LSB more covers the rounding of the
         // threshold itself. A spring with C_k = 0 has no pull toward its target, so
         // nothing is widened.
-        let dead_band = if ck > 0.0 {
+        // Floats have no dead band (`RESOLUTION` is 0): testing the constant first lets
+        // the compiler drop the division, and with it the soft-float `f64` division
+        // routine (0.9 KiB) from an `f32` firmware (scripts/size-report).
+        let dead_band = if lsb > 0.0 && ck > 0.0 {
             (1.0 / ck + 1.0) * lsb
         } else {
             0.0
         };
+        // Beyond the article's square (C_k > 1: an undersampled exact map, or the extended
+        // constructor) truncation no longer always stops dead: it can end in a limit
+        // cycle, measured at a few LSB with moderate damping and near 1/C_d LSB with very
+        // light damping (tests/fixed_point_limits.rs). Cover 4/C_d LSB of offset, and
+        // twice that of step velocity (a cycle's |u| is at most 2·|x|). An undamped spring
+        // (C_d = 0) never settles, as in floats.
+        let cd = 1.0 - S::coef_to_f64(coefficients.retention());
+        let cycle = if lsb > 0.0 && ck > 1.0 && cd > 0.0 {
+            (4.0 / cd + 4.0) * lsb
+        } else {
+            0.0
+        };
+        let offset = S::from_f64(threshold.position.max(dead_band).max(cycle));
+        let step_velocity = S::from_f64((threshold.velocity * dt).max(lsb).max(2.0 * cycle));
         RestBand {
-            offset: S::from_f64(threshold.position.max(dead_band)),
-            step_velocity: S::from_f64((threshold.velocity * dt).max(lsb)),
+            offset,
+            step_velocity,
+            limit: S::from_f64(S::SAFE_MAGNITUDE),
+            offset_low: lower_end(offset),
+            step_velocity_low: lower_end(step_velocity),
         }
     }
 
     /// True when both the offset and the step velocity are inside the band.
+    ///
+    /// Floats test `|x| ≤ band` (an `abs` is one instruction). Fixed point tests
+    /// `low ≤ x ≤ band` instead: its saturating `abs` costs five instructions on a
+    /// Cortex-M, two comparisons cost none more, and `low` is chosen so that the answer is
+    /// the same for every `x`.
     #[inline(always)]
     pub(crate) fn contains(&self, offset: S, step_velocity: S) -> bool {
-        offset.abs() <= self.offset && step_velocity.abs() <= self.step_velocity
+        if S::RESOLUTION > 0.0 {
+            self.offset_low <= offset
+                && offset <= self.offset
+                && self.step_velocity_low <= step_velocity
+                && step_velocity <= self.step_velocity
+        } else {
+            offset.abs() <= self.offset && step_velocity.abs() <= self.step_velocity
+        }
+    }
+}
+
+/// The `low` of `low ≤ x ≤ band` that accepts exactly the `x` with
+/// `saturating_abs(x) ≤ band`: `−band`, except that a band at the top of the range also
+/// accepts the bottom of the range (whose saturated magnitude is the top).
+fn lower_end<S: Scalar>(band: S) -> S {
+    let top = S::from_f64(f64::MAX);
+    if band == top {
+        S::from_f64(-f64::MAX)
+    } else {
+        band.neg()
     }
 }

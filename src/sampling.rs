@@ -35,6 +35,7 @@ use crate::tuning::Tuning;
 /// an undersampled one, `e^{2ζω·dt}` for a heavily overdamped one), more than any
 /// fixed-point coefficient format holds.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Sampling<S: Scalar> {
     offset_weight: f64,
     velocity_weight: f64,

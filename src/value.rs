@@ -40,6 +40,7 @@ use crate::tuning::Tuning;
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SpringValue<S: Scalar, const D: usize> {
     offset: [S; D],
     step_velocity: [S; D],
@@ -65,7 +66,10 @@ pub(crate) fn advance<S: Scalar>(
     band: &RestBand<S>,
 ) -> bool {
     let u = coefficients.respond(*offset, *step_velocity);
-    let x = offset.add(u);
+    // A spring with (almost) no pull and no damping drifts for ever: bound the offset at
+    // the backend's safe magnitude so that a float never reaches infinity (the identity
+    // in fixed point, which saturates anyway).
+    let x = offset.add(u).clamp_magnitude(band.limit);
     *step_velocity = u;
     *offset = x;
     band.contains(x, u)
@@ -515,10 +519,19 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         self.at_rest
     }
 
+    /// Snaps exactly onto the target: at rest, stepping costs nothing until moved.
     fn settle(&mut self) {
-        self.offset = [S::ZERO; D];
-        self.step_velocity = [S::ZERO; D];
+        // Zeroed element by element, with the flag in between: two whole-array stores
+        // of zero merge into one memset in `f64`, and a memset stops the compiler from
+        // keeping the state in registers across a caller's loop of steps (every step
+        // then pays a store-to-load round trip through memory).
+        for x in self.offset.iter_mut() {
+            *x = S::ZERO;
+        }
         self.at_rest = true;
+        for u in self.step_velocity.iter_mut() {
+            *u = S::ZERO;
+        }
     }
 
     /// Jumps the offset to `offset` with the velocity kept (`u += P·Δx`). A value at rest

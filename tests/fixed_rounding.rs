@@ -270,8 +270,12 @@ fn library_i16f16_follows_the_toward_zero_model_bit_for_bit() {
                 value.step();
                 if value.is_at_rest() {
                     // Snapped to the target inside the widened band: the model must be
-                    // at rest inside the dead band there too.
-                    let band = (1.0 / ck + 1.0).ceil() as i64;
+                    // inside it too — the dead band 1/C_k LSB, and beyond the square
+                    // (C_k > 1) the limit-cycle band 4/C_d LSB (`rest.rs`).
+                    let mut band = (1.0 / ck + 1.0).ceil() as i64;
+                    if ck > 1.0 {
+                        band = band.max((4.0 / cd + 4.0).ceil() as i64);
+                    }
                     assert!(model.x.abs() <= band, "({ck}, {cd}) from {x0}, step {n}");
                     break;
                 }

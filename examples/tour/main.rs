@@ -5,14 +5,22 @@
 //! ```
 //!
 //! Prints compact tables (steps to rest, error against the independent f64 reference
-//! model of the article and against the analytic solution) and writes SVG plots to
-//! `target/tour/`. Every number printed is computed by this run.
+//! model of the article and against the analytic solution, run time against the peer
+//! crates) and writes SVG plots to `target/tour/`. Every number printed is computed by
+//! this run.
 
 #[path = "../support/plot.rs"]
 mod plot;
 #[path = "../../tests/reference/mod.rs"]
 mod reference;
+// The pareto bench's timing harness and 1D scenes, shared with `bench`.
+#[path = "../../benches/pareto/measure.rs"]
+mod measure;
+#[path = "../../benches/pareto/values.rs"]
+mod pareto_values;
 
+mod bench;
+mod knob;
 mod networks;
 mod rigid;
 mod table;
@@ -37,6 +45,9 @@ fn main() {
     rigid::rest_in_two_steps();
     networks::rope(&dir);
     networks::jelly(&dir);
+    knob::against_pd();
+    knob::trace(&dir);
+    bench::peers();
     println!(
         "\nDone. Open the SVG files in {} in a browser.",
         dir.display()

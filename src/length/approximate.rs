@@ -17,6 +17,7 @@ use micromath::F32Ext;
 /// assert!((x - 4.0).abs() < 0.2 && (n[0] - 0.6).abs() < 0.03);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Approximate;
 
 /// [`Approximate`] with one Newton step on the inverse root,
@@ -30,6 +31,7 @@ pub struct Approximate;
 /// assert!((x - 4.0).abs() < 0.02);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ApproximateNewton;
 
 impl Sealed for Approximate {}

@@ -1,8 +1,10 @@
 //! The exact extension and axis: one square root and one reciprocal per spring.
 
-use super::Sealed;
 #[cfg(any(feature = "libm", feature = "fixed"))]
-use super::{LengthKernel, scaled};
+use super::LengthKernel;
+use super::Sealed;
+#[cfg(feature = "libm")]
+use super::scaled;
 #[cfg(any(feature = "libm", feature = "fixed"))]
 use crate::scalar::Scalar;
 
@@ -27,6 +29,7 @@ use crate::scalar::Scalar;
 /// assert_eq!(n, [0.0; 3]);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Exact;
 
 impl Sealed for Exact {}
@@ -49,9 +52,7 @@ macro_rules! float_exact {
             #[inline(always)]
             fn measure<const D: usize>(d: &[$F; D], rest: &Self::Rest) -> ($F, [$F; D]) {
                 let length = $sqrt(<$F as Scalar>::dot(d, d));
-                // 1/max(|d|, MIN_POSITIVE) is finite, and d = 0 exactly when |d| = 0, so
-                // coincident ends get a zero axis instead of 0·∞ = NaN.
-                let inverse = 1.0 / length.max(<$F>::MIN_POSITIVE);
+                let inverse = super::reciprocal_or_zero!(length, $F);
                 (length - rest, scaled(d, inverse))
             }
         }

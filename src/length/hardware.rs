@@ -37,6 +37,7 @@ fn vsqrt(x: f32) -> f32 {
 
 /// [`Exact`](super::Exact) for `f32` with the root from `vsqrt.f32` instead of `libm`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct HardwareSqrt;
 
 impl Sealed for HardwareSqrt {}
@@ -56,7 +57,7 @@ impl LengthKernel<f32> for HardwareSqrt {
     #[inline(always)]
     fn measure<const D: usize>(d: &[f32; D], rest: &Self::Rest) -> (f32, [f32; D]) {
         let length = vsqrt(<f32 as Scalar>::dot(d, d));
-        let inverse = 1.0 / length.max(f32::MIN_POSITIVE);
+        let inverse = super::reciprocal_or_zero!(length, f32);
         (length - rest, scaled(d, inverse))
     }
 }

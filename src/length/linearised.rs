@@ -19,12 +19,14 @@ use crate::scalar::Scalar;
 /// assert!((n[0] - 1.02).abs() < 1e-12);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Linearised;
 
 impl Sealed for Linearised {}
 
 /// `L²`, `1/(2L)` and `1/L` for one spring, in the position format.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LinearisedRest<S> {
     length: S,
     square: S,

@@ -59,7 +59,7 @@ pub(crate) use sealed::Sealed;
 /// ```
 pub trait LengthKernel<S: Scalar>: Sealed + Copy + Debug + Default + 'static {
     /// What the kernel precomputes from a spring's rest length at set-up.
-    type Rest: Copy + Debug + Default + PartialEq;
+    type Rest: Copy + Debug + Default + PartialEq + crate::scalar::MaybeFormat;
     /// A short name for tables.
     const NAME: &'static str;
     /// True when the rest value may be zero or negative (a rest *angle*); distance
@@ -73,6 +73,26 @@ pub trait LengthKernel<S: Scalar>: Sealed + Copy + Debug + Default + 'static {
     /// The extension and the (unit, or approximately unit) axis for the separation `d`.
     fn measure<const D: usize>(d: &[S; D], rest: &Self::Rest) -> (S, [S; D]);
 }
+
+/// `1/length`, or 0 when the length is 0: coincident ends, or ends so close that `d·d`
+/// underflowed, get a zero axis (the spring applies nothing) instead of `0·∞ = NaN` or a
+/// huge `d/MIN_POSITIVE`. A comparison and a select, not `max` (a library call,
+/// `fmaxf`, on a Cortex-M4F, which has no `vmax`).
+#[cfg(any(
+    feature = "libm",
+    all(feature = "hw-sqrt", target_arch = "arm", target_abi = "eabihf")
+))]
+macro_rules! reciprocal_or_zero {
+    ($length:expr, $F:ty) => {{
+        let length: $F = $length;
+        if length > 0.0 { 1.0 / length } else { 0.0 }
+    }};
+}
+#[cfg(any(
+    feature = "libm",
+    all(feature = "hw-sqrt", target_arch = "arm", target_abi = "eabihf")
+))]
+pub(crate) use reciprocal_or_zero;
 
 /// `d·s` for every component: the axis from the separation and a reciprocal length.
 #[inline(always)]

@@ -24,27 +24,34 @@ use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 ///
 /// The arithmetic shift floors; adding `2^SHIFT − 1` to a negative `p` first (the mask is
 /// all ones exactly when `p < 0`) turns that into truncation toward zero on both sides.
+///
+/// The range test works on the two halves of `r`: it fits the narrow type exactly when
+/// its high half is the sign extension of its low half, and the saturated value,
+/// `MAX` or `MIN` by the sign of the high half, is `(high >> (N − 1)) ^ MAX`. On a
+/// 32-bit core this is a compare and two conditional instructions, where the two
+/// double-width comparisons against `MAX` and `MIN` took a dozen.
 macro_rules! narrow_fn {
-    ($name:ident, $Wide:ty, $Narrow:ty, $SHIFT:expr) => {
+    ($name:ident, $Wide:ty, $WideU:ty, $Narrow:ty, $SHIFT:expr) => {
         #[inline(always)]
         const fn $name(p: $Wide) -> $Narrow {
-            const ALMOST_ONE: $Wide = (1 << $SHIFT) - 1;
-            let r = (p + ((p >> (<$Wide>::BITS - 1)) & ALMOST_ONE)) >> $SHIFT;
-            if r > <$Narrow>::MAX as $Wide {
-                <$Narrow>::MAX
-            } else if r < <$Narrow>::MIN as $Wide {
-                <$Narrow>::MIN
+            // `2^SHIFT − 1` when `p < 0`, else 0: the sign mask shifted down logically.
+            let bias = ((p >> (<$Wide>::BITS - 1)) as $WideU >> (<$Wide>::BITS - $SHIFT)) as $Wide;
+            let r = (p + bias) >> $SHIFT;
+            let low = r as $Narrow;
+            let high = (r >> <$Narrow>::BITS) as $Narrow;
+            if high != low >> (<$Narrow>::BITS - 1) {
+                (high >> (<$Narrow>::BITS - 1)) ^ <$Narrow>::MAX
             } else {
-                r as $Narrow
+                low
             }
         }
     };
 }
 
-narrow_fn!(narrow_q29, i64, i32, 29);
-narrow_fn!(narrow_q61, i128, i64, 61);
-narrow_fn!(narrow_q16, i64, i32, 16);
-narrow_fn!(narrow_q32, i128, i64, 32);
+narrow_fn!(narrow_q29, i64, u64, i32, 29);
+narrow_fn!(narrow_q61, i128, u128, i64, 61);
+narrow_fn!(narrow_q16, i64, u64, i32, 16);
+narrow_fn!(narrow_q32, i128, u128, i64, 32);
 
 macro_rules! fixed_backend {
     ($S:ty, $Coef:ty, $Wide:ty, $narrow:ident, $narrow_self:ident, $name:literal) => {

@@ -30,6 +30,7 @@ use crate::scalar::Scalar;
 /// assert_eq!(<Angle as LengthKernel<f32>>::measure(&[20.0], &rest), (19.5, [1.0]));
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Angle;
 
 impl Sealed for Angle {}
@@ -68,6 +69,7 @@ impl<S: Scalar> LengthKernel<S> for Angle {
 /// assert!((x - (7.0 - core::f64::consts::TAU)).abs() < 1e-12);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct WrappedAngle;
 
 impl Sealed for WrappedAngle {}

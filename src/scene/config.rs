@@ -120,6 +120,7 @@ impl Default for SleepThreshold {
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SceneConfig<const D: usize> {
     pub(crate) dt: f64,
     pub(crate) gravity: [f64; D],

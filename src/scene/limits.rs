@@ -1,29 +1,173 @@
-//! The safe coefficient for springs that share particles.
-//!
-//! A single spring is stable for any `(C_k, C_d)` in `[0, 1]²`. Springs that share a
-//! particle compete: each corrects its own extension and disturbs its neighbours'. The
-//! article's rule of thumb (eq. 29) is `C_max ≈ 1/(n + 1)`, with `n` the largest number of
-//! springs on either particle of a spring. This function starts from it; the stress tests
-//! (`STABILITY.md`) measure the true limits per topology and stepper.
+//! The safe coefficient for springs that share particles: [`network_limit`], derived
+//! and measured in `STABILITY.md` (`tests/network_limits.rs`).
 
 use super::config::Stepper;
 
-/// The largest `C_k` and `C_d` the scene accepts for a spring whose particles carry at
-/// most `springs_per_particle` springs (counting itself), with the given stepper.
+/// The fraction of the worst-case limit the scene accepts (see [`network_limit`]).
+const MARGIN: f64 = 0.75;
+
+/// The largest `C_k` and `C_d` the scene accepts for a spring whose busiest free
+/// particle carries `springs_per_particle` springs (counting itself), with the given
+/// stepper.
+///
+/// A single spring is stable for any `(C_k, C_d)` in `[0, 1]²`. Springs that share a
+/// particle compete: each corrects its own extension and disturbs its neighbours'. The
+/// article's rule of thumb (eq. 29) is `C_max ≈ 1/(n + 1)`, with `n` the largest number of
+/// springs on either free particle of a spring. The stress tests (`tests/network_limits.rs`,
+/// tables in `STABILITY.md`) measured the true limits; this is a rule that holds for
+/// **every** network with share count `n`, whatever its geometry (the
+/// geometry changes as a network deforms), masses and pinning, and whatever coefficients
+/// its other springs have, each within its own limit:
+///
+/// ```text
+/// limit(n) = min(1, ¾·W(n))        W_Jacobi(n) = 4/(3n)        W_GaussSeidel(n) = below
+/// ```
+///
+/// rounded to a multiple of `2⁻²⁴`, so that the limit is exact in every backend's
+/// coefficient format (`f32`, `Q3.29`, `Q3.61`) and a spring set exactly to it is stored
+/// exactly at it.
+///
+/// **Jacobi: `W = 4/(3n)`, proven.** Linearised about its rest state, a Jacobi step
+/// is `u' = u − D·u − K·p`, `p' = p + u'` with `K` and `D` symmetric and positive
+/// semi-definite in the mass inner product (the sums of every spring's
+/// `C·m_red·jᵀj`). Then `V = |u|² + pᵀK(p − u) − ½·uᵀDu` never grows
+/// (`ΔV = −½·(u + u')ᵀD(u + u')`) and is positive definite when `K + 2D < 4` (the
+/// matrix form of Jury's `C_k + 2·C_d < 4`). By Cauchy–Schwarz,
+/// `m_red·|δp_b − δp_a|² ≤ m_a·|δp_a|² + m_b·|δp_b|²`, so `K + 2D` is at most the largest
+/// `Σ (C_k + 2·C_d)` over the springs of one particle: below `3·n·C`. Tight for `n`
+/// collinear springs on one particle, and approached by long straight ropes (`4/(3·2)`).
+/// About a stretched state the bound still holds: a stretched spring's transverse
+/// stiffness, `C_k·x/length`, is below its axial one.
+///
+/// **Gauss-Seidel: `W` from its worst geometry.** Without damping, Gauss-Seidel is the
+/// Jacobi map (the stiffness impulses depend on positions only). With damping, its
+/// worst case in the measurements is a particle with `n` collinear springs whose first
+/// `m` are damped and the rest are not: the `n` in-place impulses compose into one spring
+/// with `C_k' = Σₖ C_k·(1 − C_d)^{(damped after k)}` and `C_d' = 1 − (1 − C_d)^m`, so
+/// at `C_k = C_d = L` it is stable exactly when
+///
+/// ```text
+/// max over m = 0..n of  3·(1 − (1 − L)^m) + (n − m)·L  <  4
+/// ```
+///
+/// which defines `W(n)`: 1 for `n = 2`, 0.8 for 3, ⅔ for 4, 0.36 for 8, `3.1/n` for
+/// large `n` (always above `3/(n + 1)`, three times the article's rule). With one tuning
+/// for all springs Gauss-Seidel tolerates much more (ropes `4/3`, meshes about 1); see
+/// `STABILITY.md` for the cases where Gauss-Seidel flutters slowly whatever the limit.
+///
+/// **The margin `¾`** covers what the linear analysis leaves out: the
+/// [length kernels](crate::length) (`Approximate` scales a spring's effective
+/// coefficients by up to 7 %, [`Linearised`](crate::length::Linearised) by
+/// `(length/rest)²`, 33 % at 15 % stretch),
+/// the nonlinear measurements (from 10 % and 50 % deformation, every topology stayed
+/// stable at `¾·W`), and the coefficient rounding of each backend.
 ///
 /// ```
 /// use stiffspring::scene::{network_limit, Stepper};
 ///
 /// // A lone spring: the article's unconditionally stable square.
 /// assert_eq!(network_limit(1, Stepper::GaussSeidel), 1.0);
-/// // A rope (two springs per inner particle): 1/3.
-/// assert!((network_limit(2, Stepper::GaussSeidel) - 1.0 / 3.0).abs() < 1e-12);
+/// assert_eq!(network_limit(1, Stepper::Jacobi), 1.0);
+/// // A rope (two springs per inner particle).
+/// assert_eq!(network_limit(2, Stepper::GaussSeidel), 0.75);
+/// assert_eq!(network_limit(2, Stepper::Jacobi), 0.5);
+/// // A square mesh without diagonals (four).
+/// assert_eq!(network_limit(4, Stepper::GaussSeidel), 0.5);
+/// assert_eq!(network_limit(4, Stepper::Jacobi), 0.25);
 /// ```
 pub fn network_limit(springs_per_particle: usize, stepper: Stepper) -> f64 {
-    match (springs_per_particle, stepper) {
-        // One spring per particle: the single-spring guarantee holds whatever the order.
-        (0 | 1, _) => 1.0,
-        // Eq. 29.
-        (n, _) => 1.0 / (n as f64 + 1.0),
+    let n = springs_per_particle;
+    if n <= 1 {
+        // One spring per free particle: the single-spring guarantee holds.
+        return 1.0;
+    }
+    let worst = match stepper {
+        Stepper::Jacobi => 4.0 / (3.0 * n as f64),
+        // Beyond a few thousand springs on one particle, the closed lower bound
+        // 3/(n + 1) is within 3 % of W(n) and needs no loop.
+        Stepper::GaussSeidel if n > 4096 => 3.0 / (n as f64 + 1.0),
+        Stepper::GaussSeidel => gauss_seidel_worst_case(n),
+    };
+    dyadic((MARGIN * worst).min(1.0))
+}
+
+/// `W(n)` for Gauss-Seidel (`n ≥ 2`): the largest `L` with
+/// `max_m 3·(1 − (1 − L)^m) + (n − m)·L < 4`, by bisection (set-up only, no `libm`).
+fn gauss_seidel_worst_case(n: usize) -> f64 {
+    // The worst m is where the next damped spring stops adding: the term grows with m
+    // while 3·(1 − L)^m > 1, so the loop stops there (about 1.1/L steps) or at n.
+    let worst = |l: f64| {
+        let mut keep = 1.0; // (1 − L)^m
+        let mut m = 0;
+        while m < n && 3.0 * keep > 1.0 {
+            keep *= 1.0 - l;
+            m += 1;
+        }
+        3.0 * (1.0 - keep) + (n - m) as f64 * l
+    };
+    // W(2) = 1, and W decreases with n: search (0, 1].
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..48 {
+        let mid = 0.5 * (lo + hi);
+        if worst(mid) < 4.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
+/// `value` (in `[0, 1]`) rounded to the nearest multiple of `2⁻²⁴`: exact in `f32` and in
+/// the fixed-point coefficient formats. (The bisection above ends a few ULP below `W`;
+/// rounding to nearest gives the round values ¾, ½, ... exactly, and moves a limit by at
+/// most `3e−8`, nothing against the margin.)
+fn dyadic(value: f64) -> f64 {
+    const SCALE: f64 = (1u32 << 24) as f64;
+    // `as` truncates toward zero: for a non-negative value, + ½ makes it round to nearest.
+    ((value * SCALE + 0.5) as u32) as f64 / SCALE
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_seidel_worst_case_has_its_closed_forms() {
+        // m = 1 gives (n + 2)·L < 4; m = 2 gives (n + 4)·L − 3L² < 4.
+        assert!((gauss_seidel_worst_case(2) - 1.0).abs() < 1e-12);
+        assert!((gauss_seidel_worst_case(3) - 0.8).abs() < 1e-12);
+        assert!((gauss_seidel_worst_case(4) - 2.0 / 3.0).abs() < 1e-12);
+        for n in 2..200 {
+            let w = gauss_seidel_worst_case(n);
+            assert!(w > 3.0 / (n as f64 + 1.0) - 1e-12, "{n}");
+            assert!(w <= 4.0 / (n as f64 + 2.0) + 1e-12, "{n}");
+        }
+    }
+
+    #[test]
+    fn limits_are_exact_in_every_coefficient_format_and_decrease() {
+        for stepper in [Stepper::GaussSeidel, Stepper::Jacobi] {
+            let mut last = 1.0;
+            for n in 0..300 {
+                let l = network_limit(n, stepper);
+                assert_eq!(l as f32 as f64, l);
+                assert_eq!((l * (1u64 << 24) as f64).fract(), 0.0);
+                assert!(l <= last && l > 0.0);
+                last = l;
+            }
+        }
+        // Jacobi: ¾·4/(3n) = 1/n.
+        assert_eq!(network_limit(3, Stepper::Jacobi), dyadic(1.0 / 3.0));
+        assert_eq!(network_limit(8, Stepper::Jacobi), 0.125);
+        // Huge share counts: tiny (or zero) limits, computed at once.
+        for stepper in [Stepper::GaussSeidel, Stepper::Jacobi] {
+            let l = network_limit(usize::MAX, stepper);
+            assert!((0.0..1e-12).contains(&l));
+            let l = network_limit(u16::MAX as usize, stepper);
+            assert!(l > 0.0 && l < 1e-4, "{l}");
+        }
+        let (near, far) = (gauss_seidel_worst_case(4096), 3.0 / 4097.0);
+        assert!(far < near && far > 0.96 * near);
     }
 }

@@ -24,6 +24,22 @@
 //!    enough stops being stepped; it costs nothing until something touches it (an
 //!    impulse, a teleport, a velocity, a moved anchor, a new or retuned spring).
 //!
+//! Measured on ten 5-particle ropes hanging at 120 Hz, nine of them still and one swinging
+//! (`cargo test --release --test scene_behaviour -- --nocapture`): once the nine have
+//! fallen asleep a step visits 10 particles and springs instead of 100, **90 % less work**;
+//! over the first 30 s, including the 6.8 s the still ropes take to fall asleep, 70 % less.
+//!
+//! # Momentum
+//!
+//! The two bodies of a spring get their velocity changes `−w_a·Δ` and `+w_b·Δ` rounded
+//! separately and symmetrically, so two **equal masses** conserve momentum exactly, to
+//! the bit, in every backend. With unequal masses the roundings no longer cancel:
+//! measured on a free 4×4 jelly with masses 0.25 to 4 over 10 000 steps, the drift is 0.2
+//! LSB·kg per step, which is 16–19 % of `Σ m|v|` in `I16F16` but 2.4e−6 in `I32F32` and
+//! ~1e−6 in `f32`. (Deriving the lighter body's change from the heavier's would cut it
+//! about 4×, but needs the mass ratio in the position format, which fails for pinned ends
+//! and ratios beyond the format's range; use `I32F32` where momentum matters.)
+//!
 //! # Springs that share particles
 //!
 //! One spring is stable for any coefficients in `[0, 1]²`; springs that share particles
@@ -38,7 +54,7 @@
 //! // A 2D rope of 8 particles hanging from a pinned end, at 120 Hz.
 //! let config = SceneConfig::new(1.0 / 120.0)?.gravity([0.0, -9.81])?;
 //! let mut rope = Scene::<f32, 2, 8, 7>::new(config)?;
-//! let tuning = Tuning::from_coefficients(0.3, 0.3)?; // below 1/3: two springs per particle
+//! let tuning = Tuning::from_coefficients(0.3, 0.3)?; // within ¾, the limit for two springs per particle
 //! let mut last = rope.add_pinned([0.0, 0.0])?;
 //! for i in 1..8 {
 //!     let next = rope.add_particle([0.1 * i as f32, 0.0], 0.05)?;
@@ -125,6 +141,7 @@ pub struct Added {
 
 /// Set-up data of one particle.
 #[derive(Clone, Copy, Debug, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Particle {
     /// 0 for a pinned particle.
     pub(crate) inverse_mass: f64,
@@ -137,6 +154,7 @@ pub(crate) struct Particle {
 
 /// How a spring runs in the hot loop.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) enum Kind {
     /// A removed spring's free slot.
     #[default]
@@ -151,6 +169,7 @@ pub(crate) enum Kind {
 
 /// One spring, as the hot loop reads it.
 #[derive(Clone, Copy, Debug, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Spring<S: Scalar, L: LengthKernel<S>> {
     pub(crate) a: u16,
     pub(crate) b: u16,
@@ -162,6 +181,7 @@ pub(crate) struct Spring<S: Scalar, L: LengthKernel<S>> {
 
 /// Sleep state of one island (indexed by the slot of its root particle).
 #[derive(Clone, Copy, Debug, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Island {
     pub(crate) awake: bool,
     /// A particle of the island moved faster than the threshold this step.
@@ -173,6 +193,7 @@ pub(crate) struct Island {
 /// A network of up to `P` particles and `K` springs in `D` dimensions, in backend `S`,
 /// measuring distance springs with kernel `L`. See the [module docs](self).
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Scene<S: Scalar, const D: usize, const P: usize, const K: usize, L = Exact>
 where
     L: LengthKernel<S>,
@@ -229,8 +250,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             *g = S::from_f64(a * dt * dt);
         }
         let (sleep_step_velocity, sleep_steps) = match config.sleep {
-            // In fixed point a resting particle's step velocity is exactly 0 (the dead
-            // band, see `scalar`), so a one-LSB threshold always lets it sleep.
+            // In fixed point a braced network does not stop dead: it ends in limit cycles
+            // whose step velocities measured 2 to 4 LSB (tests/fixed_point_limits.rs), so
+            // the threshold is at least 8 LSB there and every island can fall asleep.
             Some(t) => {
                 // ⌈time/dt⌉ without `ceil` (not in `core`); `as` saturates huge ratios.
                 let ratio = t.time() / dt;
@@ -241,7 +263,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
                     steps
                 };
                 (
-                    S::from_f64((t.velocity() * dt).max(S::RESOLUTION)),
+                    S::from_f64((t.velocity() * dt).max(8.0 * S::RESOLUTION)),
                     steps.max(1),
                 )
             }
@@ -286,8 +308,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     pub fn add_particle(&mut self, position: [S; D], mass: f64) -> Result<ParticleId, Error> {
         let mass = positive(mass, Parameter::Mass)?;
         let inverse_mass = 1.0 / mass;
-        if inverse_mass <= 0.0 {
-            // A mass so large its inverse underflows would silently become pinned.
+        if inverse_mass <= 0.0 || !inverse_mass.is_finite() {
+            // A mass so large its inverse underflows would silently become pinned; one so
+            // small that it overflows would give its springs no weights at all.
             return Err(Error::OutOfRange(Parameter::Mass));
         }
         self.insert_particle(position, inverse_mass)
@@ -398,7 +421,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// # Errors
     ///
     /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown particle;
-    /// [`Error::SameParticle`]; [`Error::NotFinite`] / [`Error::NotPositive`] with
+    /// [`Error::SameParticle`]; [`Error::NotFinite`] / [`Error::NotPositive`] /
+    /// [`Error::OutOfRange`] (beyond [`Scalar::NETWORK_MAGNITUDE`]) with
     /// [`Parameter::RestLength`]; [`Error::ExceedsNetworkLimit`] under
     /// [`LimitPolicy::Reject`]; [`Error::CapacityFull`]. Nothing changes then.
     ///
@@ -409,7 +433,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// let mut s = Scene::<f32, 2, 3, 2>::new(SceneConfig::new(0.01)?)?;
     /// let p: Vec<_> = (0..3).map(|i| s.add_particle([i as f32, 0.0], 1.0).unwrap()).collect();
     /// s.add_spring(p[0], p[1], 1.0, Tuning::rigid())?;
-    /// // The middle particle would carry two springs: the limit is 1/3.
+    /// // The middle particle would carry two springs: the limit is ¾ (Gauss-Seidel).
     /// assert_eq!(s.add_spring(p[1], p[2], 1.0, Tuning::rigid()), Err(Error::ExceedsNetworkLimit));
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
@@ -429,6 +453,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         } else {
             positive(rest_length, Parameter::RestLength)?
         };
+        if rest_length.abs() > S::NETWORK_MAGNITUDE {
+            return Err(Error::OutOfRange(Parameter::RestLength));
+        }
         let slot = match self.springs.iter().position(|s| s.kind == Kind::Dead) {
             Some(slot) => slot,
             None if self.springs.is_full() => return Err(Error::CapacityFull),
@@ -618,7 +645,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         let inverse_mass = match mass {
             Some(m) => {
                 let inverse = 1.0 / positive(m, Parameter::Mass)?;
-                if inverse <= 0.0 {
+                if inverse <= 0.0 || !inverse.is_finite() {
                     return Err(Error::OutOfRange(Parameter::Mass));
                 }
                 inverse
@@ -1064,7 +1091,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     fn checked(&self, tuning: Tuning, degree: u16) -> Result<(Tuning, bool), Error> {
         let limit = network_limit(degree as usize, self.config.stepper);
         let (ck, cd) = (tuning.stiffness(), tuning.damping());
-        if ck <= limit && cd <= limit {
+        // A stored spring's coefficients are the requested ones rounded to the backend's
+        // coefficient format (24 significant bits in f32, 29 fractional bits in I16F16),
+        // so a spring tuned exactly at the limit may read back a hair above it; a
+        // relative slack of 1e−6, far below any stability margin, keeps it accepted.
+        let slack = limit * 1e-6;
+        if ck <= limit + slack && cd <= limit + slack {
             return Ok((tuning, false));
         }
         match self.config.policy {

@@ -4,9 +4,52 @@
 //! or branches on a rare case: the schedule lists only awake particles and springs, split
 //! by kind, so each loop body is the same for every element it visits.
 
-use super::{Scene, Stepper};
+use super::{Scene, Spring, Stepper};
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
+
+/// True when `S` is a float that the machine adds in hardware: `f32` and `f64` on the
+/// host, `f32` on a hard-float ARM (Cortex-M4F/M7/M33). In software float (`f32` on a
+/// Cortex-M0, `f64` on a Cortex-M4F) an add costs several comparisons, so
+/// `integrate_positions` then tests every value on its own.
+#[inline(always)]
+fn adds_in_hardware<S: Scalar>() -> bool {
+    S::RESOLUTION == 0.0
+        && (cfg!(not(target_arch = "arm"))
+            || (cfg!(target_abi = "eabihf") && core::mem::size_of::<S>() == 4))
+}
+
+/// `x += u` for one particle, within `bound` (see `integrate_positions`).
+#[inline(always)]
+fn integrate<S: Scalar, const D: usize>(x: &mut [S; D], u: &mut [S; D], bound: S) {
+    if S::RESOLUTION > 0.0 {
+        // Fixed point saturates by itself: the bound is its whole range.
+        for k in 0..D {
+            x[k] = x[k].add(u[k]);
+        }
+        return;
+    }
+    if adds_in_hardware::<S>() {
+        // The common case first: if the sum of every |u| and |x + u| is within the
+        // bound (and so not NaN), no clamp below could change anything, and one
+        // comparison replaces one per value. The result is the same either way, bit for
+        // bit.
+        let mut next = *x;
+        let mut total = S::ZERO;
+        for k in 0..D {
+            next[k] = x[k].add(u[k]);
+            total = total.add(u[k].abs()).add(next[k].abs());
+        }
+        if total <= bound {
+            *x = next;
+            return;
+        }
+    }
+    for k in 0..D {
+        u[k] = u[k].clamp_magnitude(bound);
+        x[k] = x[k].add(u[k]).clamp_magnitude(bound);
+    }
+}
 
 /// `a − b` per component.
 #[inline(always)]
@@ -16,6 +59,21 @@ fn difference<S: Scalar, const D: usize>(a: &[S; D], b: &[S; D]) -> [S; D] {
         d[k] = a[k].sub(b[k]);
     }
     d
+}
+
+/// One spring's change of relative step velocity `Δ = respond(x, u_rel) − u_rel` (the
+/// kernel of eq. 27/28) and the axis it acts along, from the positions and step velocities
+/// of its ends.
+#[inline(always)]
+fn spring_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
+    spring: &Spring<S, L>,
+    positions: &[[S; D]],
+    velocities: &[[S; D]],
+) -> (S, [S; D]) {
+    let (a, b) = (spring.a as usize, spring.b as usize);
+    let (x, n) = L::measure(&difference(&positions[b], &positions[a]), &spring.rest);
+    let relative = S::dot(&difference(&velocities[b], &velocities[a]), &n);
+    (spring.coefficients.respond(x, relative).sub(relative), n)
 }
 
 /// `v += n·s` per component.
@@ -70,25 +128,21 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// place, so later springs see it. Springs with a pinned end first: they need no
     /// weights and move one particle.
     fn solve_in_place(&mut self) {
-        let positions = &self.positions;
-        let u = &mut self.step_velocities;
+        // Every per-particle vector has the same length; slicing them to it once lets
+        // the compiler drop the second bounds check of each particle a spring touches.
+        let positions: &[[S; D]] = &self.positions;
+        let u = &mut self.step_velocities[..positions.len()];
         for &i in self.one_sided.iter() {
             let s = &self.springs[i as usize];
-            let (a, b) = (s.a as usize, s.b as usize);
-            let (x, n) = L::measure(&difference(&positions[b], &positions[a]), &s.rest);
-            let relative = S::dot(&difference(&u[b], &u[a]), &n);
-            let delta = s.coefficients.respond(x, relative).sub(relative);
-            add_along(&mut u[b], &n, delta);
+            let (delta, n) = spring_response(s, positions, u);
+            add_along(&mut u[s.b as usize], &n, delta);
         }
         for &i in self.two_sided.iter() {
             let s = &self.springs[i as usize];
-            let (a, b) = (s.a as usize, s.b as usize);
-            let (x, n) = L::measure(&difference(&positions[b], &positions[a]), &s.rest);
-            let relative = S::dot(&difference(&u[b], &u[a]), &n);
-            let delta = s.coefficients.respond(x, relative).sub(relative);
+            let (delta, n) = spring_response(s, positions, u);
             let (da, db) = s.weights.split(delta);
-            add_along(&mut u[a], &n, da);
-            add_along(&mut u[b], &n, db);
+            add_along(&mut u[s.a as usize], &n, da);
+            add_along(&mut u[s.b as usize], &n, db);
         }
     }
 
@@ -96,26 +150,20 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// summed per particle, then applied: the force form of eq. 16/21 integrated with
     /// symplectic Euler.
     fn solve_from_one_state(&mut self) {
-        let positions = &self.positions;
-        let u = &self.step_velocities;
-        let sums = &mut self.accumulated;
+        let positions: &[[S; D]] = &self.positions;
+        let u = &self.step_velocities[..positions.len()];
+        let sums = &mut self.accumulated[..positions.len()];
         for &i in self.one_sided.iter() {
             let s = &self.springs[i as usize];
-            let (a, b) = (s.a as usize, s.b as usize);
-            let (x, n) = L::measure(&difference(&positions[b], &positions[a]), &s.rest);
-            let relative = S::dot(&difference(&u[b], &u[a]), &n);
-            let delta = s.coefficients.respond(x, relative).sub(relative);
-            add_along(&mut sums[b], &n, delta);
+            let (delta, n) = spring_response(s, positions, u);
+            add_along(&mut sums[s.b as usize], &n, delta);
         }
         for &i in self.two_sided.iter() {
             let s = &self.springs[i as usize];
-            let (a, b) = (s.a as usize, s.b as usize);
-            let (x, n) = L::measure(&difference(&positions[b], &positions[a]), &s.rest);
-            let relative = S::dot(&difference(&u[b], &u[a]), &n);
-            let delta = s.coefficients.respond(x, relative).sub(relative);
+            let (delta, n) = spring_response(s, positions, u);
             let (da, db) = s.weights.split(delta);
-            add_along(&mut sums[a], &n, da);
-            add_along(&mut sums[b], &n, db);
+            add_along(&mut sums[s.a as usize], &n, da);
+            add_along(&mut sums[s.b as usize], &n, db);
         }
         for &p in self.free.iter() {
             let (u, sum) = (&mut self.step_velocities[p as usize], &mut sums[p as usize]);
@@ -133,14 +181,35 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// topology the article's rule misjudges) saturates at `±NETWORK_MAGNITUDE` instead of
     /// overflowing, and a NaN made from an overflow inside the step is reset to 0, so no
     /// position or velocity ever leaves `step()` infinite or NaN. Free in fixed point.
+    ///
+    /// It also takes stage 5's census while each final velocity is at hand: a particle
+    /// faster than the sleep threshold marks its island as moving (nothing after this
+    /// stage changes a free particle's velocity, and one pass over the particles is
+    /// cheaper than two).
     fn integrate_positions(&mut self) {
         let bound = self.bound;
-        for &p in self.free.iter() {
-            let x = &mut self.positions[p as usize];
-            let u = &mut self.step_velocities[p as usize];
-            for k in 0..D {
-                u[k] = u[k].clamp_magnitude(bound);
-                x[k] = x[k].add(u[k]).clamp_magnitude(bound);
+        let census = self.sleep_steps != 0;
+        let limit = self.sleep_step_velocity;
+        let positions: &mut [[S; D]] = &mut self.positions;
+        let n = positions.len();
+        let velocities = &mut self.step_velocities[..n];
+        // Two loops rather than a test per particle: a scene without sleep pays nothing
+        // for the census.
+        if census {
+            let particles = &self.particles[..n];
+            let islands = &mut self.islands;
+            for &p in self.free.iter() {
+                let p = p as usize;
+                let u = &mut velocities[p];
+                integrate(&mut positions[p], u, bound);
+                if u.iter().any(|c| c.abs() > limit) {
+                    islands[particles[p].island as usize].moving = true;
+                }
+            }
+        } else {
+            for &p in self.free.iter() {
+                let p = p as usize;
+                integrate(&mut positions[p], &mut velocities[p], bound);
             }
         }
     }
@@ -160,14 +229,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         if self.sleep_steps == 0 {
             return;
         }
-        let limit = self.sleep_step_velocity;
-        for &p in self.free.iter() {
-            let u = &self.step_velocities[p as usize];
-            if u.iter().any(|c| c.abs() > limit) {
-                let island = self.particles[p as usize].island as usize;
-                self.islands[island].moving = true;
-            }
-        }
+        // Which islands moved was marked in stage 3.
         let mut fell_asleep = false;
         for &root in self.awake_islands.iter() {
             let island = &mut self.islands[root as usize];

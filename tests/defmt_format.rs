@@ -1,0 +1,94 @@
+//! With the `defmt` feature, every public type of the crate is `defmt::Format`, so that a
+//! firmware can log any of them.
+//!
+//! ```text
+//! cargo test --features defmt --test defmt_format
+//! ```
+//!
+//! The list below is checked at compile time (a type without `Format` does not compile).
+//! `scripts/check-defmt-types` checks that it names every struct and enum of the public
+//! API (the pages of `cargo doc`), so a type added later without `Format` fails CI.
+#![cfg(feature = "defmt")]
+
+use stiffspring::kernel::{BodyWeights, Coefficients};
+use stiffspring::knob::stability::{Latency, StrengthMap};
+use stiffspring::knob::{Endstop, KnobEvents};
+use stiffspring::length::{Approximate, ApproximateNewton, Exact, Linearised};
+use stiffspring::scene::{
+    Added, Angle, LimitPolicy, ParticleId, Scene, SceneConfig, SleepThreshold, SpringId, Stepper,
+    WrappedAngle,
+};
+use stiffspring::{
+    AndroidDamping, AndroidStiffness, Error, I16F16, I32F32, Knob, KnobConfig, KnobOutput,
+    Oscillator, Parameter, ReactSpringPreset, RestThreshold, SpringBatch, SpringValue,
+    SwiftUiPreset, Tuning,
+};
+
+/// Compiles only for `T: defmt::Format`.
+const fn is_format<T: defmt::Format + ?Sized>() {}
+
+/// Generic types are checked in every backend.
+macro_rules! in_every_backend {
+    ($($t:ident),* $(,)?) => {
+        $(
+            is_format::<$t<f32>>();
+            is_format::<$t<f64>>();
+            is_format::<$t<I16F16>>();
+            is_format::<$t<I32F32>>();
+        )*
+    };
+}
+
+// A `const` item: the assertion holds at compile time, without running anything.
+const _: () = {
+    // Set-up.
+    is_format::<Tuning>();
+    is_format::<Oscillator>();
+    is_format::<RestThreshold>();
+    is_format::<Error>();
+    is_format::<Parameter>();
+    is_format::<SwiftUiPreset>();
+    is_format::<AndroidStiffness>();
+    is_format::<AndroidDamping>();
+    is_format::<ReactSpringPreset>();
+    // Values.
+    is_format::<SpringValue<f32, 2>>();
+    is_format::<SpringValue<I16F16, 1>>();
+    is_format::<SpringBatch<f32, 4, 2>>();
+    is_format::<SpringBatch<I16F16, 4>>();
+    // The kernel.
+    in_every_backend!(Coefficients, BodyWeights);
+    // Length kernels.
+    is_format::<Exact>();
+    is_format::<Linearised>();
+    is_format::<Approximate>();
+    is_format::<ApproximateNewton>();
+    // `length::HardwareSqrt` exists only on hard-float ARM targets: the firmware build
+    // of `examples/cost.rs` asserts it there.
+    // Scenes.
+    is_format::<Scene<f32, 2, 8, 7>>();
+    is_format::<Scene<I16F16, 2, 8, 7, Linearised>>();
+    is_format::<Scene<f32, 1, 4, 3, Angle>>();
+    is_format::<Scene<I16F16, 1, 4, 3, WrappedAngle>>();
+    is_format::<SceneConfig<2>>();
+    is_format::<Stepper>();
+    is_format::<LimitPolicy>();
+    is_format::<SleepThreshold>();
+    is_format::<ParticleId>();
+    is_format::<SpringId>();
+    is_format::<Added>();
+    is_format::<Angle>();
+    is_format::<WrappedAngle>();
+    // The knob.
+    in_every_backend!(Knob, KnobOutput);
+    is_format::<KnobConfig>();
+    is_format::<KnobEvents>();
+    is_format::<Endstop>();
+    is_format::<StrengthMap>();
+    is_format::<Latency>();
+};
+
+#[test]
+fn every_public_type_is_defmt_format() {
+    // The assertions are the `const` item above; reaching this line means they compiled.
+}

@@ -1,0 +1,391 @@
+//! One spring over the whole `(C_k, C_d)` plane: property tests of stability, in every
+//! backend, with random masses, time steps and positions up to each backend's range.
+//!
+//! - **The region.** The map `u ← (1 − C_d)·u − C_k·x, x ← x + u` is stable exactly on
+//!   Jury's region `C_k > 0, 0 < C_d < 2, C_k + 2·C_d < 4`, plus the article's closed
+//!   square `[0, 1]²` (whose edges `C_k = 0` or `C_d = 0` are neutral: no spring, or no
+//!   damping). [`Tuning::from_coefficients_extended`] must accept exactly that set: every
+//!   point drawn in the plane `[−1, 5] × [−1, 3]` is checked both ways. Outside, the
+//!   independent reference map (`tests/reference`) must visibly grow, so the test fails
+//!   if either the library or the region is wrong.
+//! - **Inside, nothing grows.** The library's value, stepped 10 000 times, never swings
+//!   beyond the reference map's transient bound `max_n ‖Mⁿ‖` and decays at its spectral
+//!   radius, in `f64`, `f32` and `I32F32`.
+//! - **Two bodies.** With masses in any ratio up to `10⁶` and `dt` from `10⁻⁵` to 1 s,
+//!   the kernel's two-body step moves the pair's relative coordinate exactly as the
+//!   single spring and conserves momentum.
+//! - **Range.** Positions, targets and flings anywhere in `f32`/`f64`'s accepted range
+//!   (`±Scalar::SAFE_MAGNITUDE`) never give NaN or infinity over 10 000 steps (but see
+//!   the ignored `a_drifting_value_never_becomes_infinite`); fixed point from `MIN` and
+//!   `MAX` saturates, never wraps, and comes to rest in the square `[0, 1]²` (beyond it,
+//!   truncation can leave a small limit cycle: `tests/fixed_point_limits.rs`).
+//!
+//! `cargo test --test single_spring_stability` runs 256 cases per property (part of
+//! `cargo test`); `PROPTEST_CASES=100000 cargo test --release --test
+//! single_spring_stability` is the full run.
+
+mod reference;
+
+use proptest::prelude::*;
+use stiffspring::kernel::{BodyWeights, Coefficients};
+use stiffspring::{Error, I16F16, I32F32, Parameter, RestThreshold, Scalar, SpringValue, Tuning};
+
+const STEPS: usize = 10_000;
+
+/// The set the library must accept: Jury's open region and the closed unit square.
+fn in_region(ck: f64, cd: f64) -> bool {
+    let square = (0.0..=1.0).contains(&ck) && (0.0..=1.0).contains(&cd);
+    square || (ck > 0.0 && cd > 0.0 && cd < 2.0 && ck + 2.0 * cd < 4.0)
+}
+
+/// `max_{n ≤ steps} ‖Mⁿ‖∞` of the reference map.
+fn transient_bound(ck: f64, cd: f64, steps: usize) -> f64 {
+    let m = reference::map_matrix(ck, cd);
+    let mut p = [[1.0, 0.0], [0.0, 1.0]];
+    let mut worst = 1.0f64;
+    for _ in 0..steps {
+        p = [
+            [
+                m[0][0] * p[0][0] + m[0][1] * p[1][0],
+                m[0][0] * p[0][1] + m[0][1] * p[1][1],
+            ],
+            [
+                m[1][0] * p[0][0] + m[1][1] * p[1][0],
+                m[1][0] * p[0][1] + m[1][1] * p[1][1],
+            ],
+        ];
+        worst = worst.max((p[0][0].abs() + p[0][1].abs()).max(p[1][0].abs() + p[1][1].abs()));
+    }
+    worst
+}
+
+/// The largest `max(|x|, |u|)` the reference map reaches from `(x, u)` in `steps`.
+fn reference_peak(ck: f64, cd: f64, (mut x, mut u): (f64, f64), steps: usize) -> f64 {
+    let mut peak = x.abs().max(u.abs());
+    for _ in 0..steps {
+        reference::map_step(&mut x, &mut u, ck, cd);
+        peak = peak.max(x.abs().max(u.abs()));
+        if !peak.is_finite() {
+            return f64::INFINITY;
+        }
+    }
+    peak
+}
+
+/// A coefficient drawn across `[lo, hi]`, with the special values drawn often.
+fn coefficient(lo: f64, hi: f64, special: &'static [f64]) -> impl Strategy<Value = f64> {
+    prop_oneof![
+        6 => lo..=hi,
+        1 => proptest::sample::select(special),
+        // Within a few ULP of a special value.
+        1 => (proptest::sample::select(special), -4i64..=4)
+            .prop_map(|(v, k)| f64::from_bits((v.to_bits() as i64 + k).max(0) as u64)),
+    ]
+}
+
+const CK_SPECIAL: &[f64] = &[0.0, 1.0, 2.0, 3.0, 4.0, 1e-9, 3.999];
+const CD_SPECIAL: &[f64] = &[0.0, 1.0, 2.0, 1e-9, 0.5, 1.5];
+
+/// A point of the stable region: any of the plane that is in it, and points near its
+/// edges.
+fn region_point() -> impl Strategy<Value = (f64, f64)> {
+    prop_oneof![
+        (
+            coefficient(0.0, 4.0, CK_SPECIAL),
+            coefficient(0.0, 2.0, CD_SPECIAL)
+        ),
+        // Just inside the Jury edge C_k + 2·C_d = 4.
+        (0.0..2.0f64, 1e-6..0.1f64).prop_map(|(cd, gap)| (4.0 - 2.0 * cd - gap, cd)),
+    ]
+    .prop_filter("inside the region", |&(ck, cd)| in_region(ck, cd))
+}
+
+fn value<S: Scalar>(tuning: Tuning, x0: f64, dt: f64) -> SpringValue<S, 1> {
+    let never = RestThreshold::new(1e-300, 1e-300).unwrap();
+    let mut v = SpringValue::<S, 1>::new([S::from_f64(x0)], tuning, dt)
+        .unwrap()
+        .with_rest_threshold(never);
+    v.set_target([S::ZERO]).unwrap();
+    v
+}
+
+/// Steps a value and checks it against the reference's transient bound and decay.
+fn no_growth<S: Scalar>(ck: f64, cd: f64, x0: f64, slack: f64) -> Result<(), TestCaseError> {
+    let tuning = Tuning::from_coefficients_extended(ck, cd).unwrap();
+    // The coefficients the backend actually runs.
+    let actual = Coefficients::<S>::new(&tuning).tuning();
+    let (ck, cd) = (actual.stiffness(), actual.damping());
+    let bound = transient_bound(ck, cd, STEPS) * x0.abs();
+    let mut v = value::<S>(tuning, x0, 1.0);
+    let mut peak = 0.0f64;
+    for n in 0..STEPS {
+        v.step();
+        let (x, u) = (v.offset()[0].to_f64(), v.step_velocity()[0].to_f64());
+        prop_assert!(x.is_finite() && u.is_finite(), "{} step {n}", S::NAME);
+        peak = peak.max(x.abs().max(u.abs()));
+    }
+    prop_assert!(
+        peak <= bound * (1.0 + 1e-5) + slack,
+        "{} ({ck}, {cd}): peak {peak} above the bound {bound}",
+        S::NAME
+    );
+    let rho = reference::spectral_radius(ck, cd);
+    if rho < 0.998 {
+        // 0.998^10000 ≈ 2e−9: decayed to rounding.
+        let end = v.offset()[0].to_f64().abs();
+        prop_assert!(
+            end <= 1e-6 * x0.abs() + slack,
+            "{} ({ck}, {cd}): {end}",
+            S::NAME
+        );
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The library accepts exactly the stable region, and the reference map grows
+    /// outside it (so that a wrong region in either fails the test).
+    #[test]
+    fn the_library_accepts_exactly_the_stable_region(
+        ck in coefficient(-1.0, 5.0, CK_SPECIAL),
+        cd in coefficient(-1.0, 3.0, CD_SPECIAL),
+    ) {
+        let accepted = Tuning::from_coefficients_extended(ck, cd);
+        prop_assert_eq!(accepted.is_ok(), in_region(ck, cd), "({}, {}): {:?}", ck, cd, accepted);
+        match accepted {
+            Ok(t) => prop_assert_eq!((t.stiffness(), t.damping()), (ck, cd)),
+            Err(e) => prop_assert!(matches!(
+                e,
+                Error::OutOfRange(Parameter::Stiffness | Parameter::Damping)
+            )),
+        }
+        let rho = reference::spectral_radius(ck, cd);
+        if !in_region(ck, cd) && rho > 1.001 {
+            // ρ^10000 > e^10: from either start the unstable mode shows.
+            let growth = reference_peak(ck, cd, (1.0, 0.0), STEPS)
+                .max(reference_peak(ck, cd, (0.0, 1.0), STEPS));
+            prop_assert!(growth > 1e3, "({}, {}) ρ = {}: grew only {}", ck, cd, rho, growth);
+        }
+        if in_region(ck, cd) {
+            prop_assert!(rho <= 1.0 + 1e-12, "({}, {}) ρ = {}", ck, cd, rho);
+        }
+    }
+
+    /// Inside the region a value never swings above the transient bound and decays at
+    /// the spectral radius: f64 to rounding, f32 and I32F32 (amplitude 1000) within
+    /// their resolution.
+    #[test]
+    fn inside_the_region_nothing_grows((ck, cd) in region_point(), x0 in -1e3..1e3f64) {
+        no_growth::<f64>(ck, cd, x0, 1e-9 * x0.abs())?;
+        no_growth::<f32>(ck, cd, x0, 1e-3 * x0.abs())?;
+        no_growth::<I32F32>(ck, cd, x0, 1e-3)?;
+    }
+
+    /// Two free bodies of masses in any ratio up to 10⁶, at any dt from 10⁻⁵ to 1 s: the
+    /// kernel moves their relative coordinate as the single spring and conserves
+    /// momentum; velocities (`u/dt`) stay finite.
+    #[test]
+    fn two_bodies_of_any_masses_are_one_spring(
+        (ck, cd) in region_point(),
+        log_ratio in -6.0..=6.0f64,
+        log_dt in -5.0..=0.0f64,
+        (x0, u0) in (-10.0..10.0f64, -1.0..1.0f64),
+    ) {
+        let (ma, mb) = (1.0, 10f64.powf(log_ratio));
+        let dt = 10f64.powf(log_dt);
+        let c = Coefficients::<f64>::new(&Tuning::from_coefficients_extended(ck, cd).unwrap());
+        let w = BodyWeights::<f64>::from_inverse_masses(1.0 / ma, 1.0 / mb).unwrap();
+        // Bodies on a line: a at 0, b at the extension x0; relative step velocity u0.
+        let (mut xa, mut xb, mut ua, mut ub) = (0.0f64, x0, -u0 * mb / (ma + mb), u0 * ma / (ma + mb));
+        let p0 = ma * ua + mb * ub;
+        let (mut x, mut u) = (x0, u0);
+        let mut scale = x0.abs() + u0.abs() + 1e-300;
+        let mut momentum_scale = 0.0f64;
+        for n in 0..2_000 {
+            // Near the edge of the region the transient grows far above the start (ρ ≈ 1,
+            // C_k ≈ 4): rounding scales with the largest state so far.
+            scale = scale.max(x.abs() + u.abs());
+            momentum_scale = momentum_scale.max(ma * ua.abs() + mb * ub.abs());
+            let rel = ub - ua;
+            let delta = c.respond(xb - xa, rel) - rel;
+            let (da, db) = w.split(delta);
+            ua += da;
+            ub += db;
+            xa += ua;
+            xb += ub;
+            reference::map_step(&mut x, &mut u, ck, cd);
+            prop_assert!((xb - xa - x).abs() <= 1e-9 * scale * (1.0 + n as f64 / 100.0),
+                "step {}: {} vs {}", n, xb - xa, x);
+            prop_assert!((ua / dt).is_finite() && (ub / dt).is_finite());
+        }
+        let p = ma * ua + mb * ub;
+        // Each step rounds each body's change once: 2 000 steps, a few ε each.
+        prop_assert!((p - p0).abs() <= 2000.0 * 4.0 * f64::EPSILON * momentum_scale,
+            "momentum {} → {}", p0, p);
+    }
+
+    /// Floats: positions, targets and flings anywhere in the accepted range, any tuning
+    /// of the region, any dt from 10⁻⁵ to 1: never NaN, never infinite.
+    #[test]
+    fn floats_never_produce_nan_or_inf_across_their_range(
+        (ck, cd) in region_point(),
+        (p, t, v) in (-1.0..=1.0f64, -1.0..=1.0f64, -1.0..=1.0f64),
+        log_dt in -5.0..=0.0f64,
+    ) {
+        let tuning = Tuning::from_coefficients_extended(ck, cd).unwrap();
+        floats_stay_finite::<f32>(tuning, (p, t, v), 10f64.powf(log_dt))?;
+        floats_stay_finite::<f64>(tuning, (p, t, v), 10f64.powf(log_dt))?;
+    }
+
+    /// Fixed point from the ends of its range, with any tuning of the region: every
+    /// step moves by the saturated arithmetic (no wrap across the range), and a value
+    /// with damping comes to rest on its target.
+    #[test]
+    fn fixed_point_saturates_and_still_comes_to_rest(
+        (ck, cd) in region_point(),
+        from_max in any::<bool>(),
+        to_zero in any::<bool>(),
+    ) {
+        fixed_saturates::<I16F16>(ck, cd, from_max, to_zero)?;
+        fixed_saturates::<I32F32>(ck, cd, from_max, to_zero)?;
+    }
+}
+
+fn floats_stay_finite<S: Scalar>(
+    tuning: Tuning,
+    (p, t, v): (f64, f64, f64),
+    dt: f64,
+) -> Result<(), TestCaseError> {
+    let safe = S::SAFE_MAGNITUDE;
+    let mut value = SpringValue::<S, 1>::new([S::from_f64(p * safe)], tuning, dt).unwrap();
+    // A target anywhere the offset stays within the range.
+    // (1e−6 below the edge: the f32 rounding of position and target.)
+    let reach = safe * (1.0 - 1e-6);
+    let target = (t * safe).clamp(p * safe - reach, p * safe + reach);
+    prop_assert!(value.set_target([S::from_f64(target)]).is_ok());
+    match value.fling([S::from_f64(v * safe)]) {
+        Ok(()) | Err(Error::OutOfRange(Parameter::Velocity)) => {}
+        Err(e) => return Err(TestCaseError::fail(format!("fling: {e:?}"))),
+    }
+    for n in 0..STEPS {
+        value.step();
+        let all = [
+            value.position()[0],
+            value.offset()[0],
+            value.step_velocity()[0],
+            value.velocity()[0],
+        ];
+        prop_assert!(
+            all.iter().all(|x| x.to_f64().is_finite()),
+            "{} step {n}: {all:?} ({tuning:?}, dt {dt})",
+            S::NAME
+        );
+    }
+    Ok(())
+}
+
+fn fixed_saturates<S: Scalar>(
+    ck: f64,
+    cd: f64,
+    from_max: bool,
+    to_zero: bool,
+) -> Result<(), TestCaseError> {
+    let tuning = Tuning::from_coefficients_extended(ck, cd).unwrap();
+    let (lo, hi) = (
+        S::from_f64(f64::MIN).to_f64(),
+        S::from_f64(f64::MAX).to_f64(),
+    );
+    // MAX, or −MAX (one LSB above MIN, so that the offset to 0 fits).
+    let end = S::from_f64(if from_max { hi } else { -hi });
+    let target = if to_zero {
+        S::ZERO
+    } else {
+        S::from_f64(end.to_f64() * 0.25)
+    };
+    let tiny = RestThreshold::new(1e-12, 1e-12).unwrap();
+    let mut v = SpringValue::<S, 1>::new([end], tuning, 1e-3)
+        .unwrap()
+        .with_rest_threshold(tiny);
+    v.set_target([target]).unwrap();
+    let c = Coefficients::<S>::new(&tuning);
+    let (k, r) = (S::coef_to_f64(c.stiffness()), S::coef_to_f64(c.retention()));
+    let lsb = S::RESOLUTION;
+    // Decays by e^−50 within the budget when ρ ≤ 0.999; the dead band then stops it.
+    let rho = reference::spectral_radius(k, 1.0 - r);
+    let budget = 50_000;
+    for n in 0..budget {
+        if v.is_at_rest() {
+            prop_assert_eq!(v.position()[0], target);
+            return Ok(());
+        }
+        let (x, u) = (v.offset()[0].to_f64(), v.step_velocity()[0].to_f64());
+        v.step();
+        if v.is_at_rest() {
+            continue;
+        }
+        let (x2, u2) = (v.offset()[0].to_f64(), v.step_velocity()[0].to_f64());
+        // u' is the exact product difference, truncated toward zero by less than one
+        // LSB, then saturated; x' = x + u', saturated. A wrap would jump across the
+        // range instead. (f64 holds I32F32's 63 bits to 1e−15.)
+        let exact = (r * u - k * x).clamp(lo, hi);
+        let tol = ((r * u).abs() + (k * x).abs()) * 1e-15;
+        prop_assert!(
+            (u2 - exact).abs() <= lsb + tol && u2.abs() <= exact.abs() + tol,
+            "{} step {}: u' = {} vs {} ({}, {})",
+            S::NAME,
+            n,
+            u2,
+            exact,
+            ck,
+            cd
+        );
+        prop_assert!(
+            (x2 - (x + u2).clamp(lo, hi)).abs() <= (x.abs() + u2.abs()) * 1e-15,
+            "{} step {}: x' = {} for {} + {}",
+            S::NAME,
+            n,
+            x2,
+            x,
+            u2
+        );
+    }
+    // In the article's square truncation toward zero always comes to rest (the rounding
+    // study); beyond it (C_k > 1 or C_d > 1) it can end in a small limit cycle, measured
+    // in tests/fixed_point_limits.rs.
+    let square = ck <= 1.0 && cd <= 1.0;
+    prop_assert!(
+        !square || rho > 0.999,
+        "{} ({}, {}), ρ = {}: not at rest",
+        S::NAME,
+        ck,
+        cd,
+        rho
+    );
+    Ok(())
+}
+
+/// A weak or missing spring (`C_k` tiny or 0, little damping) flung at the top of a
+/// float backend's range drifts for ever: `x` grows by `u` per step, and after `2²⁴`
+/// steps at `u = 2¹⁰⁰⁰` an `f64` offset passes `f64::MAX`. The tuning, the fling and every
+/// step are accepted, so the value ends infinite: `SAFE_MAGNITUDE`'s headroom bounds the
+/// transient growth of a spring with a pull, not the drift of one without.
+#[test]
+fn a_drifting_value_never_becomes_infinite() {
+    for tuning in [
+        Tuning::from_coefficients(0.0, 0.0).unwrap(),
+        Tuning::from_coefficients(1e-300, 0.0).unwrap(),
+        Tuning::from_coefficients(0.0, 1e-12).unwrap(),
+    ] {
+        let mut v = SpringValue::<f64, 1>::new([0.0], tuning, 1.0).unwrap();
+        v.fling([f64::SAFE_MAGNITUDE]).unwrap();
+        for n in 0..(1u64 << 25) {
+            v.step();
+            assert!(
+                v.offset()[0].is_finite() && v.position()[0].is_finite(),
+                "{tuning:?}: infinite after {n} steps"
+            );
+        }
+    }
+}
