@@ -4,7 +4,10 @@
 //! on the library and compares every sample with golden values computed here, on the
 //! host, from the independent f64 reference model (`tests/reference`): for a tuning from
 //! the exact map, the analytic solution of the continuous oscillator, which the library
-//! claims to sample exactly. The golden values are kept in the repository as Rust
+//! claims to sample exactly. The knob has no counterpart in the reference model: its
+//! golden torques come from the library's `f64` knob, whose torque law the `knob_*` tests
+//! check against an independently simulated rotor and independently computed
+//! eigenvalues. The golden values are kept in the repository as Rust
 //! source (`examples/golden/*.rs`), so that the firmware can `include!` them.
 //!
 //! This test recomputes them and fails when a file is missing or stale. To regenerate:
@@ -26,6 +29,12 @@ mod rope_scene;
 
 #[path = "../examples/golden/rope.rs"]
 mod rope_golden;
+
+#[path = "../examples/scenes/knob.rs"]
+mod knob_scene;
+
+#[path = "../examples/golden/knob.rs"]
+mod knob_golden;
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -233,4 +242,43 @@ fn rope_scene_golden_values_are_current() {
         &rope_golden::POSITIONS,
     );
     assert_eq!(rope_golden::EVERY, ROPE_EVERY);
+}
+
+/// The `f64` knob on the scripted sweep: torque (fraction of the limit) and detent index
+/// per period.
+fn play_knob_sweep() -> Vec<Vec<f64>> {
+    let mut knob = stiffspring::Knob::<f64>::new(&knob_scene::config(), 0.0).unwrap();
+    let (mut torques, mut detents) = (Vec::new(), Vec::new());
+    for n in 0..knob_scene::SWEEP_STEPS {
+        let out = knob.update(knob_scene::sweep_angle(n));
+        torques.push(out.torque);
+        detents.push(f64::from(out.detent));
+    }
+    vec![torques, detents]
+}
+
+#[test]
+fn knob_sweep_golden_values_are_current() {
+    let tracks = play_knob_sweep();
+    let source = render(
+        "knob",
+        "the torque (a fraction of the limit) and the detent index of the `f64` knob\n\
+         //! after each period of the scripted encoder sweep.",
+        "SWEEP",
+        &[("torque", tracks[0].clone()), ("detent", tracks[1].clone())],
+    )
+    .replace(
+        "from the f64 reference\n//! model (tests/reference)",
+        "from the library's f64\n//! knob (the reference model has no knob)",
+    );
+    check_or_bless(
+        "examples/golden/knob.rs",
+        source,
+        &tracks,
+        &knob_golden::SWEEP,
+    );
+    // The sweep crosses every detent both ways.
+    let detents = &tracks[1];
+    let changes = detents.windows(2).filter(|w| w[0] != w[1]).count();
+    assert!(changes >= 2 * 19, "{changes} detent changes");
 }
