@@ -29,6 +29,12 @@ pub struct RestThreshold {
 impl RestThreshold {
     /// Android's thresholds for a minimum visible change of 1 (one pixel):
     /// `position = 0.75`, `velocity = 46.875` per second.
+    ///
+    /// ```
+    /// use stiffspring::RestThreshold;
+    /// assert_eq!(RestThreshold::PIXELS, RestThreshold::from_min_visible_change(1.0)?);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
     pub const PIXELS: RestThreshold = RestThreshold::from_visible_change(1.0);
 
     /// A threshold of `position` (the user's unit) and `velocity` (units per second).

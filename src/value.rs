@@ -54,6 +54,13 @@ pub struct SpringValue<S: Scalar, const D: usize> {
 }
 
 /// A one-dimensional [`SpringValue`].
+///
+/// ```
+/// use stiffspring::{SpringValue1, Tuning};
+/// let v = SpringValue1::<f32>::new([0.0], Tuning::rigid(), 0.01)?;
+/// assert_eq!(v.position(), [0.0]);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
 pub type SpringValue1<S> = SpringValue<S, 1>;
 
 /// Advances one component of a spring toward its target by one step and reports whether

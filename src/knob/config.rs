@@ -73,9 +73,17 @@ impl KnobConfig {
     /// The damping ratio of every spring of the knob unless set otherwise: a crisp detent
     /// that overshoots by about 5% after a flick and settles in one period of its own
     /// frequency.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::KnobConfig::DEFAULT_DAMPING_RATIO, 0.7);
+    /// ```
     pub const DEFAULT_DAMPING_RATIO: f64 = 0.7;
 
     /// The default snap point: switch at 55% of the width, SmartKnob's usual value.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::KnobConfig::DEFAULT_SNAP_POINT, 0.55);
+    /// ```
     pub const DEFAULT_SNAP_POINT: f64 = 0.55;
 
     /// A knob run every `dt` seconds, driving a rotor of moment of inertia `inertia` with

@@ -127,6 +127,11 @@ impl<S: Scalar> Ladder<S> {
 }
 
 /// The most magnetic detents a knob holds.
+///
+/// ```
+/// use stiffspring::knob::MAX_MAGNETS;
+/// assert_eq!(MAX_MAGNETS, 8);
+/// ```
 pub const MAX_MAGNETS: usize = 8;
 
 /// Magnetic detents: centres at arbitrary angles that pull the rotor only within a

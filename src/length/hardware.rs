@@ -36,6 +36,15 @@ fn vsqrt(x: f32) -> f32 {
 }
 
 /// [`Exact`](super::Exact) for `f32` with the root from `vsqrt.f32` instead of `libm`.
+///
+/// Only on hard-float ARM targets with the `hw-sqrt` feature, so the example is not run
+/// on the host:
+///
+/// ```ignore
+/// use stiffspring::length::HardwareSqrt;
+/// use stiffspring::scene::{Scene, SceneConfig};
+/// let rope = Scene::<f32, 2, 16, 15, HardwareSqrt>::new(SceneConfig::new(1.0 / 240.0)?)?;
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct HardwareSqrt;

@@ -25,6 +25,12 @@ pub struct Linearised;
 impl Sealed for Linearised {}
 
 /// `L²`, `1/(2L)` and `1/L` for one spring, in the position format.
+///
+/// ```
+/// use stiffspring::length::{LengthKernel, Linearised};
+/// let rest = <Linearised as LengthKernel<f32>>::rest(2.0);
+/// assert_eq!(<Linearised as LengthKernel<f32>>::rest_length(&rest), 2.0);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LinearisedRest<S> {

@@ -87,12 +87,30 @@ use heapless::Vec;
 
 /// A particle of a [`Scene`]. Valid until the particle is removed; a removed particle's
 /// slot may be reused by a later one.
+///
+/// ```
+/// # use stiffspring::scene::{Scene, SceneConfig};
+/// let mut s = Scene::<f32, 2, 2, 1>::new(SceneConfig::new(0.01)?)?;
+/// let p = s.add_particle([0.0, 0.0], 1.0)?;
+/// assert_eq!(s.position(p)?, [0.0, 0.0]);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct ParticleId(u16);
 
 /// A spring of a [`Scene`]. Valid until the spring is removed; a removed spring's slot
 /// may be reused by a later one.
+///
+/// ```
+/// # use stiffspring::scene::{Scene, SceneConfig};
+/// # use stiffspring::Tuning;
+/// let mut s = Scene::<f32, 2, 2, 1>::new(SceneConfig::new(0.01)?)?;
+/// let (a, b) = (s.add_particle([0.0, 0.0], 1.0)?, s.add_particle([1.0, 0.0], 1.0)?);
+/// let spring = s.add_spring(a, b, 1.0, Tuning::rigid())?.spring;
+/// assert_eq!(s.rest_length(spring)?, 1.0);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct SpringId(u16);
@@ -128,6 +146,19 @@ impl SpringId {
 }
 
 /// What [`Scene::add_spring`] (and the other calls that check the network limit) did.
+///
+/// ```
+/// use stiffspring::scene::{LimitPolicy, Scene, SceneConfig};
+/// use stiffspring::Tuning;
+///
+/// let config = SceneConfig::new(0.01)?.limit_policy(LimitPolicy::Clamp);
+/// let mut s = Scene::<f64, 1, 3, 2>::new(config)?;
+/// let p: Vec<_> = (0..3).map(|i| s.add_particle([i as f64], 1.0).unwrap()).collect();
+/// assert_eq!(s.add_spring(p[0], p[1], 1.0, Tuning::rigid())?.clamped, 0);
+/// // The middle particle now carries two springs: both rigid springs are clamped.
+/// assert_eq!(s.add_spring(p[1], p[2], 1.0, Tuning::rigid())?.clamped, 2);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Added {
@@ -192,6 +223,29 @@ pub(crate) struct Island {
 
 /// A network of up to `P` particles and `K` springs in `D` dimensions, in backend `S`,
 /// measuring distance springs with kernel `L`. See the [module docs](self).
+///
+/// ```
+/// use stiffspring::length::Linearised;
+/// use stiffspring::scene::{Scene, SceneConfig};
+/// use stiffspring::{I16F16, Tuning};
+///
+/// // A 3D triangle in fixed point with the root-free kernel.
+/// let mut s = Scene::<I16F16, 3, 3, 3, Linearised>::new(SceneConfig::new(1.0 / 60.0)?)?;
+/// let one = I16F16::from_num(1);
+/// let zero = I16F16::ZERO;
+/// let p = [
+///     s.add_particle([zero, zero, zero], 1.0)?,
+///     s.add_particle([one, zero, zero], 1.0)?,
+///     s.add_particle([zero, one, zero], 1.0)?,
+/// ];
+/// let t = Tuning::from_coefficients(0.2, 0.2)?;
+/// for (a, b) in [(0, 1), (1, 2), (2, 0)] {
+///     s.add_spring_at_rest(p[a], p[b], t)?;
+/// }
+/// s.step();
+/// assert_eq!(s.position(p[1])?, [one, zero, zero]); // at rest: nothing moves
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Scene<S: Scalar, const D: usize, const P: usize, const K: usize, L = Exact>

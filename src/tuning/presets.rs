@@ -45,6 +45,10 @@ pub enum SwiftUiPreset {
 
 impl SwiftUiPreset {
     /// Every preset, for tables and tests.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::SwiftUiPreset::ALL.len(), 5);
+    /// ```
     pub const ALL: [SwiftUiPreset; 5] = [
         SwiftUiPreset::Smooth,
         SwiftUiPreset::Snappy,
@@ -94,6 +98,10 @@ pub enum AndroidStiffness {
 
 impl AndroidStiffness {
     /// Every constant, for tables and tests.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::AndroidStiffness::ALL.len(), 5);
+    /// ```
     pub const ALL: [AndroidStiffness; 5] = [
         AndroidStiffness::High,
         AndroidStiffness::Medium,
@@ -138,6 +146,10 @@ pub enum AndroidDamping {
 
 impl AndroidDamping {
     /// Every constant, for tables and tests.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::AndroidDamping::ALL.len(), 4);
+    /// ```
     pub const ALL: [AndroidDamping; 4] = [
         AndroidDamping::HighBouncy,
         AndroidDamping::MediumBouncy,
@@ -185,6 +197,10 @@ pub enum ReactSpringPreset {
 
 impl ReactSpringPreset {
     /// Every preset, for tables and tests.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::ReactSpringPreset::ALL.len(), 6);
+    /// ```
     pub const ALL: [ReactSpringPreset; 6] = [
         ReactSpringPreset::Default,
         ReactSpringPreset::Gentle,
