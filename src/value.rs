@@ -112,19 +112,30 @@ pub(crate) fn offsets<S: Scalar, const D: usize>(
     Ok(out)
 }
 
+/// Values must be finite and within the backend's safe magnitude.
 pub(crate) fn check_all<S: Scalar, const D: usize>(
     values: &[S; D],
     what: Parameter,
 ) -> Result<(), Error> {
-    if values.iter().all(|v| v.is_valid()) {
-        Ok(())
-    } else {
-        let bad = values.iter().find(|v| !v.is_valid());
-        match bad.map(|v| v.to_f64()) {
-            Some(v) if v.is_finite() => Err(Error::OutOfRange(what)),
-            _ => Err(Error::NotFinite(what)),
+    check_within(values, S::SAFE_MAGNITUDE, what)
+}
+
+/// Values must be finite and at most `bound` in magnitude (`SAFE_MAGNITUDE` for values,
+/// `NETWORK_MAGNITUDE` for scenes).
+pub(crate) fn check_within<S: Scalar, const D: usize>(
+    values: &[S; D],
+    bound: f64,
+    what: Parameter,
+) -> Result<(), Error> {
+    for v in values.iter().map(|v| v.to_f64()) {
+        if !v.is_finite() {
+            return Err(Error::NotFinite(what));
+        }
+        if v.abs() > bound {
+            return Err(Error::OutOfRange(what));
         }
     }
+    Ok(())
 }
 
 impl<S: Scalar, const D: usize> SpringValue<S, D> {

@@ -25,7 +25,6 @@ pub(crate) struct Ladder<S: Scalar> {
     width: S,
     threshold: S,
     neg_threshold: S,
-    one: S,
     min_index: i32,
     max_index: i32,
     index: i32,
@@ -48,7 +47,6 @@ impl<S: Scalar> Ladder<S> {
             width: S::from_f64(width),
             threshold: S::from_f64(threshold),
             neg_threshold: S::from_f64(-threshold),
-            one: S::from_f64(1.0),
             min_index,
             max_index,
             index,
@@ -67,7 +65,6 @@ impl<S: Scalar> Ladder<S> {
             width: S::ZERO,
             threshold: never,
             neg_threshold: never.neg(),
-            one: S::from_f64(1.0),
             min_index: 0,
             max_index: 0,
             index: 0,
@@ -92,11 +89,11 @@ impl<S: Scalar> Ladder<S> {
             let e = angle.sub(self.centre);
             if e > self.threshold && self.index < self.max_index {
                 self.index += 1;
-                self.index_value = self.index_value.add(self.one);
+                self.index_value = self.index_value.add(S::ONE);
                 moved += 1;
             } else if e < self.neg_threshold && self.index > self.min_index {
                 self.index -= 1;
-                self.index_value = self.index_value.sub(self.one);
+                self.index_value = self.index_value.sub(S::ONE);
                 moved -= 1;
             } else {
                 break;

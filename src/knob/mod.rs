@@ -176,7 +176,6 @@ const BEYOND: usize = 2;
 pub struct Knob<S: Scalar> {
     gain: S,
     step: S::Coef,
-    one: S,
     lowest: S,
     highest: S,
     bounded: bool,
@@ -297,7 +296,6 @@ impl<S: Scalar> Knob<S> {
         let mut knob = Knob {
             gain: S::from_f64(v.gain),
             step: S::coef(v.dt),
-            one: S::from_f64(1.0),
             lowest: S::from_f64(-reach),
             highest: S::from_f64(reach),
             bounded: v.bounds.is_some(),
@@ -473,11 +471,11 @@ impl<S: Scalar> Knob<S> {
         let torque = z.coefficients.respond(e, w).sub(w);
         // The clamp; its last arm cannot be reached from clamped inputs, but keeps a NaN
         // from ever leaving.
-        let torque = if torque > self.one {
-            self.one
-        } else if torque < self.one.neg() {
-            self.one.neg()
-        } else if torque >= self.one.neg() {
+        let torque = if torque > S::ONE {
+            S::ONE
+        } else if torque < S::ONE.neg() {
+            S::ONE.neg()
+        } else if torque >= S::ONE.neg() {
             torque
         } else {
             S::ZERO

@@ -153,7 +153,9 @@ impl SpringId {
 ///
 /// let config = SceneConfig::new(0.01)?.limit_policy(LimitPolicy::Clamp);
 /// let mut s = Scene::<f64, 1, 3, 2>::new(config)?;
-/// let p: Vec<_> = (0..3).map(|i| s.add_particle([i as f64], 1.0).unwrap()).collect();
+/// let p = (0..3)
+///     .map(|i| s.add_particle([i as f64], 1.0))
+///     .collect::<Result<Vec<_>, _>>()?;
 /// assert_eq!(s.add_spring(p[0], p[1], 1.0, Tuning::rigid())?.clamped, 0);
 /// // The middle particle now carries two springs: both rigid springs are clamped.
 /// assert_eq!(s.add_spring(p[1], p[2], 1.0, Tuning::rigid())?.clamped, 2);
@@ -268,8 +270,9 @@ where
     pub(crate) moved_anchors: Vec<u16, P>,
     /// Jacobi's per-particle sums.
     pub(crate) accumulated: Vec<[S; D], P>,
-    /// `g·dt²` in step units.
-    pub(crate) gravity_step: [S; D],
+    /// `g·dt²` in step units; `None` when it is zero in the backend, decided at set-up so
+    /// that a scene without gravity skips the stage.
+    pub(crate) gravity_step: Option<[S; D]>,
     /// The sleep threshold in step units (`v·dt`), widened to an LSB in fixed point.
     pub(crate) sleep_step_velocity: S,
     /// Steps an island must stay quiet to sleep; 0 when sleeping is off.
@@ -299,10 +302,11 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             assert!(P <= u16::MAX as usize && K <= u16::MAX as usize);
         }
         let dt = config.dt;
-        let mut gravity_step = [S::ZERO; D];
-        for (g, a) in gravity_step.iter_mut().zip(config.gravity) {
+        let mut g = [S::ZERO; D];
+        for (g, a) in g.iter_mut().zip(config.gravity) {
             *g = S::from_f64(a * dt * dt);
         }
+        let gravity_step = g.iter().any(|g| *g != S::ZERO).then_some(g);
         let (sleep_step_velocity, sleep_steps) = match config.sleep {
             // In fixed point a braced network does not stop dead: it ends in limit cycles
             // whose step velocities measured 2 to 4 LSB (tests/fixed_point_limits.rs), so
@@ -485,7 +489,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// use stiffspring::{Error, Tuning};
     ///
     /// let mut s = Scene::<f32, 2, 3, 2>::new(SceneConfig::new(0.01)?)?;
-    /// let p: Vec<_> = (0..3).map(|i| s.add_particle([i as f32, 0.0], 1.0).unwrap()).collect();
+    /// let p = (0..3)
+    ///     .map(|i| s.add_particle([i as f32, 0.0], 1.0))
+    ///     .collect::<Result<Vec<_>, _>>()?;
     /// s.add_spring(p[0], p[1], 1.0, Tuning::rigid())?;
     /// // The middle particle would carry two springs: the limit is ¾ (Gauss-Seidel).
     /// assert_eq!(s.add_spring(p[1], p[2], 1.0, Tuning::rigid()), Err(Error::ExceedsNetworkLimit));
@@ -1243,16 +1249,7 @@ impl Change {
 
 /// Positions must be finite and within the backend's network magnitude.
 fn check_position<S: Scalar, const D: usize>(position: &[S; D]) -> Result<(), Error> {
-    for p in position {
-        let v = p.to_f64();
-        if !v.is_finite() {
-            return Err(Error::NotFinite(Parameter::Position));
-        }
-        if v.abs() > S::NETWORK_MAGNITUDE {
-            return Err(Error::OutOfRange(Parameter::Position));
-        }
-    }
-    Ok(())
+    crate::value::check_within(position, S::NETWORK_MAGNITUDE, Parameter::Position)
 }
 
 /// A step quantity (`v·dt`, `u + j/m·dt`) converted to the backend, or an error if it is

@@ -112,10 +112,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
 
     /// Stage 1: `u += g·dt²` for every awake free particle.
     fn apply_gravity(&mut self) {
-        let g = self.gravity_step;
-        if g.iter().all(|g| *g == S::ZERO) {
+        let Some(g) = self.gravity_step else {
             return;
-        }
+        };
         for &p in self.free.iter() {
             let u = &mut self.step_velocities[p as usize];
             for k in 0..D {
