@@ -1,407 +1,813 @@
-//! Many values stepped together, in fixed-capacity structure-of-arrays storage.
+//! Many values that share one tuning, stepped together: list items, grid cells, particles
+//! of an effect.
 //!
-//! A UI screen animates dozens of values, most of them at rest most of the time. The
-//! batch keeps each field in its own `heapless::Vec` and a list of the awake values, so a
-//! step touches only values that move: a value at rest costs nothing, not even a check.
+//! The state lives in plain arrays indexed by slot, and the tuning's gains are loaded
+//! once per step for all of them. While every value is awake the step is one straight
+//! loop over the arrays; once some have settled it visits only the awake ones, through a
+//! list of their slots, so settled values cost nothing.
 
-use crate::error::{Error, Parameter, positive};
-use crate::kernel::Coefficients;
+use crate::error::{Error, Parameter};
 use crate::rest::{RestBand, RestThreshold};
-use crate::sampling::Sampling;
 use crate::scalar::Scalar;
+use crate::start::Start;
 use crate::tuning::Tuning;
-use crate::value::{advance, check_all, jump, offsets};
+use crate::value::{check_position, gains_of, saturate};
 use heapless::Vec;
 
-/// Up to `N` values of dimension `D` springing toward their targets, in backend `S`,
-/// all stepped every `dt`.
+/// A value of a [`SpringBatch`]: a slot and the generation of the value in it, so that an
+/// index of a removed value never names the value that took its slot.
 ///
 /// ```
 /// use stiffspring::{SpringBatch, Tuning};
 ///
-/// let dt = 1.0 / 60.0;
-/// let mut batch = SpringBatch::<f32, 16>::new(dt)?;
-/// let t = Tuning::from_frequency(3.0, 1.0, dt)?;
-/// let a = batch.push([0.0], t)?;
-/// let b = batch.push([10.0], t)?;
-/// batch.set_target(a, [5.0])?;
-/// assert_eq!(batch.awake(), 1); // b is at rest and costs nothing
-/// for _ in 0..120 {
-///     batch.step();
+/// let mut batch = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?;
+/// let a = batch.push([1.0])?;
+/// batch.remove(a);
+/// let b = batch.push([2.0])?;
+/// assert_eq!(a.slot(), b.slot()); // the slot is reused...
+/// assert_ne!(a, b); // ...the index is not
+/// assert_eq!(batch.position(a), None);
+/// assert_eq!(batch.position(b), Some([2.0]));
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct BatchIndex {
+    slot: u16,
+    generation: u32,
+}
+
+impl BatchIndex {
+    /// The slot, for arrays parallel to the batch (`0..N`).
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut batch = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?;
+    /// assert_eq!(batch.push([0.0])?.slot(), 0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn slot(self) -> usize {
+        self.slot as usize
+    }
+}
+
+/// What one [`SpringBatch::step`] did.
+///
+/// ```
+/// use stiffspring::{BatchMotion, SpringBatch, Tuning};
+///
+/// let mut batch = SpringBatch::<f32, 1, 8>::new(&Tuning::from_coefficients(0.5, 1.0, 0.01)?)?;
+/// let i = batch.push([0.0])?;
+/// batch.set_target(i, [1.0]);
+/// assert_eq!(batch.step(), BatchMotion { moving: 1, settled: 0 });
+/// while batch.step().settled == 0 {}
+/// assert_eq!(batch.just_settled().collect::<Vec<_>>(), [i]);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[must_use = "a step reports what to redraw; `let _ =` discards it"]
+pub struct BatchMotion {
+    /// Values that moved and are still moving.
+    pub moving: usize,
+    /// Values that came to rest in this step ([`SpringBatch::just_settled`] names them).
+    pub settled: usize,
+}
+
+impl BatchMotion {
+    /// True when any value moved in this step.
+    ///
+    /// ```
+    /// assert!(!stiffspring::BatchMotion::default().any());
+    /// ```
+    pub const fn any(&self) -> bool {
+        self.moving + self.settled > 0
+    }
+}
+
+/// Up to `N` values of `D` dimensions in backend `S`, sharing one [`Tuning`] (and so one
+/// time step).
+///
+/// Like [`SpringValue`](crate::SpringValue), the UI path cannot fail: `set_target`,
+/// `set_position` and `fling` ignore a stale index or NaN and saturate what is out of
+/// range; their `try_` twins report it. The values are read by index
+/// ([`position`](SpringBatch::position), [`velocity`](SpringBatch::velocity)) or all at
+/// once ([`iter`](SpringBatch::iter)); there is no slice of positions, because the state
+/// is kept relative to each target in the backend's wide state format (see
+/// [`Scalar`]), and storing positions too would cost a store per value per step.
+///
+/// ```
+/// use stiffspring::{SpringBatch, Tuning};
+///
+/// let tuning = Tuning::from_frequency(3.0, 0.8, 1.0 / 60.0)?;
+/// let mut list = SpringBatch::<f32, 1, 200>::new(&tuning)?;
+/// let rows: Vec<_> = (0..200).map(|i| list.push([i as f32 * 40.0])).collect::<Result<_, _>>()?;
+/// for (i, row) in rows.iter().enumerate() {
+///     list.set_target(*row, [i as f32 * 40.0 + 40.0]); // everything scrolls one row
 /// }
-/// assert_eq!(batch.position(a)?, [5.0]);
-/// assert!(batch.is_at_rest(a)? && batch.awake() == 0);
-/// # let _ = b;
+/// while list.step().any() {}
+/// assert_eq!(list.position(rows[3]), Some([160.0]));
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct SpringBatch<S: Scalar, const N: usize, const D: usize = 1> {
-    offsets: Vec<[S; D], N>,
-    step_velocities: Vec<[S; D], N>,
-    targets: Vec<[S; D], N>,
-    coefficients: Vec<Coefficients<S>, N>,
-    samplings: Vec<Sampling<S>, N>,
-    bands: Vec<RestBand<S>, N>,
-    thresholds: Vec<RestThreshold, N>,
-    /// Indices of the values that are not at rest, in no particular order.
-    awake: Vec<usize, N>,
-    dt: f64,
+pub struct SpringBatch<S: Scalar, const D: usize, const N: usize> {
+    offset: [[S::State; D]; N],
+    step_velocity: [[S::State; D]; N],
+    target: [[S; D]; N],
+    generation: [u32; N],
+    live: [bool; N],
+    is_awake: [bool; N],
+    /// The slots of the awake values, in no order.
+    awake: Vec<u16, N>,
+    /// The slots that settled in the last step.
+    settled: Vec<u16, N>,
+    /// Slots `0..used` have held a value; the rest never did.
+    used: usize,
+    len: usize,
+    gains: S::Gains,
+    band: RestBand<S>,
+    start: Start<S>,
+    threshold: RestThreshold,
+    tuning: Tuning,
+    check_every: u16,
+    until_check: u16,
 }
 
-impl<S: Scalar, const N: usize, const D: usize> SpringBatch<S, N, D> {
-    /// An empty batch stepped every `dt` seconds.
+impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
+    /// An empty batch of values tuned by `tuning` (which also sets the time step), with
+    /// the default [`RestThreshold`], testing rest every step.
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`.
+    /// As [`SpringValue::new`](crate::SpringValue::new) for the tuning. Capacities above
+    /// 65 535 do not compile.
     ///
     /// ```
-    /// let batch = stiffspring::SpringBatch::<f32, 8, 2>::new(0.01)?;
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let batch = SpringBatch::<f32, 2, 16>::new(&Tuning::rigid(0.01)?)?;
     /// assert!(batch.is_empty());
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn new(dt: f64) -> Result<Self, Error> {
+    pub fn new(tuning: &Tuning) -> Result<Self, Error> {
+        const { assert!(N <= u16::MAX as usize) };
+        let threshold = RestThreshold::default();
         Ok(SpringBatch {
-            offsets: Vec::new(),
-            step_velocities: Vec::new(),
-            targets: Vec::new(),
-            coefficients: Vec::new(),
-            samplings: Vec::new(),
-            bands: Vec::new(),
-            thresholds: Vec::new(),
+            offset: [[S::STATE_ZERO; D]; N],
+            step_velocity: [[S::STATE_ZERO; D]; N],
+            target: [[S::ZERO; D]; N],
+            generation: [0; N],
+            live: [false; N],
+            is_awake: [false; N],
             awake: Vec::new(),
-            dt: positive(dt, Parameter::TimeStep)?,
+            settled: Vec::new(),
+            used: 0,
+            len: 0,
+            gains: gains_of::<S>(tuning)?,
+            band: RestBand::new(&threshold, tuning),
+            start: Start::new(tuning)?,
+            threshold,
+            tuning: *tuning,
+            check_every: 1,
+            until_check: 0,
         })
     }
 
-    /// Adds a value at rest at `position` with the default [`RestThreshold`], and returns
-    /// its index.
+    /// The same batch with another rest threshold.
+    ///
+    /// ```
+    /// use stiffspring::{RestThreshold, SpringBatch, Tuning};
+    /// let b = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?
+    ///     .with_rest_threshold(RestThreshold::PIXELS);
+    /// assert_eq!(b.rest_threshold(), RestThreshold::PIXELS);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn with_rest_threshold(mut self, threshold: RestThreshold) -> Self {
+        self.threshold = threshold;
+        self.band = RestBand::new(&threshold, &self.tuning);
+        self
+    }
+
+    /// The same batch testing rest only every `period` steps (1 tests every step; 0 is
+    /// taken as 1).
+    ///
+    /// The steps in between are the bare recurrence, with no test and no branch per
+    /// value: the rest test costs `1/period` of itself per step. The price: a value settles
+    /// up to `period − 1` steps after it entered the rest band (it keeps converging
+    /// meanwhile), and [`SpringBatch::step`] reports it then.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?.with_rest_check_every(4);
+    /// let i = b.push([0.0])?;
+    /// b.set_target(i, [1.0]);
+    /// let mut steps = 1;
+    /// while b.step().settled == 0 {
+    ///     steps += 1;
+    /// }
+    /// assert_eq!(steps, 4); // at rest after 1, reported at the 4th
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn with_rest_check_every(mut self, period: u16) -> Self {
+        self.check_every = period.max(1);
+        self.until_check = self.check_every - 1;
+        self
+    }
+
+    /// Adds a value at rest at `position`.
     ///
     /// # Errors
     ///
-    /// [`Error::CapacityFull`] when `N` values are already in; [`Error::NotFinite`] or
+    /// [`Error::CapacityFull`] when the batch holds `N` values; [`Error::NotFinite`] or
     /// [`Error::OutOfRange`] for the position. Nothing is added then.
     ///
     /// ```
     /// use stiffspring::{Error, SpringBatch, Tuning};
-    ///
-    /// let mut batch = SpringBatch::<f32, 1>::new(0.01)?;
-    /// assert_eq!(batch.push([1.0], Tuning::rigid())?, 0);
-    /// assert_eq!(batch.push([2.0], Tuning::rigid()), Err(Error::CapacityFull));
+    /// let mut b = SpringBatch::<f32, 1, 1>::new(&Tuning::rigid(0.01)?)?;
+    /// b.push([0.0])?;
+    /// assert_eq!(b.push([1.0]), Err(Error::CapacityFull { capacity: 1 }));
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn push(&mut self, position: [S; D], tuning: Tuning) -> Result<usize, Error> {
-        self.push_with_threshold(position, tuning, RestThreshold::default())
+    pub fn push(&mut self, position: [S; D]) -> Result<BatchIndex, Error> {
+        for p in position {
+            check_position(p, Parameter::Position)?;
+        }
+        // A freed slot first, so that the used slots stay few and the straight loop short.
+        let slot = match self.live[..self.used].iter().position(|l| !l) {
+            Some(slot) => slot,
+            None if self.used < N => {
+                self.used += 1;
+                self.used - 1
+            }
+            None => return Err(Error::CapacityFull { capacity: N }),
+        };
+        self.live[slot] = true;
+        self.target[slot] = position;
+        self.offset[slot] = [S::STATE_ZERO; D];
+        self.step_velocity[slot] = [S::STATE_ZERO; D];
+        self.len += 1;
+        Ok(BatchIndex {
+            slot: slot as u16,
+            generation: self.generation[slot],
+        })
     }
 
-    /// Adds a value at rest at `position` with its own rest thresholds, and returns its
+    /// Removes a value; returns its position, or `None` for a stale index.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([3.0])?;
+    /// assert_eq!(b.remove(i), Some([3.0]));
+    /// assert_eq!(b.remove(i), None);
+    /// assert!(b.is_empty());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn remove(&mut self, index: BatchIndex) -> Option<[S; D]> {
+        let slot = self.slot(index)?;
+        let position = self.position_of(slot);
+        self.sleep(slot);
+        self.live[slot] = false;
+        self.generation[slot] = self.generation[slot].wrapping_add(1);
+        self.offset[slot] = [S::STATE_ZERO; D];
+        self.step_velocity[slot] = [S::STATE_ZERO; D];
+        self.len -= 1;
+        Some(position)
+    }
+
+    /// Moves a value's target; see [`SpringValue::set_target`](crate::SpringValue::set_target).
+    /// A stale index or a NaN component is ignored; out-of-range input saturates.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([0.0])?;
+    /// b.set_target(i, [5.0]);
+    /// assert_eq!(b.target(i), Some([5.0]));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn set_target(&mut self, index: BatchIndex, target: [S; D]) {
+        let Some(slot) = self.slot(index) else {
+            return;
+        };
+        let mut t = target;
+        for v in t.iter_mut() {
+            match saturate(*v) {
+                Some(s) => *v = s,
+                None => return,
+            }
+        }
+        let mut moved = false;
+        for k in 0..D {
+            let delta = S::state_sub(self.target[slot][k].widen(), t[k].widen());
+            let x = S::state_add(self.offset[slot][k], delta);
+            let u = self.start.shifted(self.step_velocity[slot][k], delta);
+            moved |= x != self.offset[slot][k];
+            self.offset[slot][k] = self.start.clamp(x);
+            self.step_velocity[slot][k] = self.start.clamp(u);
+        }
+        self.target[slot] = t;
+        if moved {
+            self.wake(slot);
+        }
+    }
+
+    /// [`SpringBatch::set_target`], reporting instead of ignoring or saturating.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Stale`] for an index that names no live value; otherwise as
+    /// [`SpringValue::try_set_target`](crate::SpringValue::try_set_target). The batch is
+    /// then unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{Error, Parameter, SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([0.0])?;
+    /// b.remove(i);
+    /// assert_eq!(
+    ///     b.try_set_target(i, [1.0]),
+    ///     Err(Error::Stale { parameter: Parameter::Index })
+    /// );
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn try_set_target(&mut self, index: BatchIndex, target: [S; D]) -> Result<(), Error> {
+        let slot = self.live_slot(index)?;
+        let mut x = self.offset[slot];
+        let mut u = self.step_velocity[slot];
+        for k in 0..D {
+            check_position(target[k], Parameter::Position)?;
+            let delta = S::state_sub(self.target[slot][k].widen(), target[k].widen());
+            x[k] = self.start.check(S::state_add(x[k], delta), Parameter::Position)?;
+            u[k] = self
+                .start
+                .check(self.start.shifted(u[k], delta), Parameter::StepVelocity)?;
+        }
+        let moved = x != self.offset[slot];
+        self.offset[slot] = x;
+        self.step_velocity[slot] = u;
+        self.target[slot] = target;
+        if moved {
+            self.wake(slot);
+        }
+        Ok(())
+    }
+
+    /// Moves a value to `position` at once, keeping its velocity and target; see
+    /// [`SpringValue::set_position`](crate::SpringValue::set_position). A stale index or
+    /// NaN is ignored; out-of-range input saturates.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([0.0])?;
+    /// b.set_position(i, [2.0]);
+    /// assert_eq!(b.position(i), Some([2.0]));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn set_position(&mut self, index: BatchIndex, position: [S; D]) {
+        let Some(slot) = self.slot(index) else {
+            return;
+        };
+        let mut p = position;
+        for v in p.iter_mut() {
+            match saturate(*v) {
+                Some(s) => *v = s,
+                None => return,
+            }
+        }
+        let mut moved = false;
+        for k in 0..D {
+            let to = S::state_sub(p[k].widen(), self.target[slot][k].widen());
+            let delta = S::state_sub(to, self.offset[slot][k]);
+            moved |= delta != S::STATE_ZERO;
+            let u = self.start.shifted(self.step_velocity[slot][k], delta);
+            self.offset[slot][k] = self.start.clamp(to);
+            self.step_velocity[slot][k] = self.start.clamp(u);
+        }
+        if moved {
+            self.wake(slot);
+        }
+    }
+
+    /// Gives a value a velocity (units per second); see
+    /// [`SpringValue::fling`](crate::SpringValue::fling). A stale index or NaN is
+    /// ignored; a step velocity out of range saturates.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f64, 1, 2>::new(&Tuning::from_frequency(1.0, 0.1, 0.01)?)?;
+    /// let i = b.push([0.0])?;
+    /// b.fling(i, [3.0]);
+    /// assert!((b.velocity(i).unwrap()[0] - 3.0).abs() < 1e-12);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn fling(&mut self, index: BatchIndex, velocity: [S; D]) {
+        let Some(slot) = self.slot(index) else {
+            return;
+        };
+        let mut u = self.step_velocity[slot];
+        for k in 0..D {
+            let Some(v) = saturate(velocity[k]) else {
+                return;
+            };
+            u[k] = self
+                .start
+                .clamp(self.start.step_velocity_unchecked(self.offset[slot][k], v));
+        }
+        self.step_velocity[slot] = u;
+        self.wake(slot);
+    }
+
+    /// [`SpringBatch::fling`], reporting instead of ignoring or saturating.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Stale`] for a stale index; otherwise as
+    /// [`SpringValue::try_fling`](crate::SpringValue::try_fling).
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([0.0])?;
+    /// assert!(b.try_fling(i, [f32::NAN]).is_err());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn try_fling(&mut self, index: BatchIndex, velocity: [S; D]) -> Result<(), Error> {
+        let slot = self.live_slot(index)?;
+        let mut u = self.step_velocity[slot];
+        for k in 0..D {
+            let v = check_position(velocity[k], Parameter::Velocity)?;
+            u[k] = self.start.step_velocity(self.offset[slot][k], v)?;
+        }
+        self.step_velocity[slot] = u;
+        self.wake(slot);
+        Ok(())
+    }
+
+    /// Retunes every value (a new spring, a new time step, or both), keeping positions
+    /// and velocities.
+    ///
+    /// # Errors
+    ///
+    /// As [`SpringValue::set_tuning`](crate::SpringValue::set_tuning); the batch is then
+    /// unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// b.set_tuning(&Tuning::from_frequency(2.0, 0.5, 1.0 / 120.0)?)?;
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn set_tuning(&mut self, tuning: &Tuning) -> Result<(), Error> {
+        let gains = gains_of::<S>(tuning)?;
+        let start = Start::<S>::new(tuning)?;
+        let mut velocities = self.step_velocity;
+        for &slot in self.awake.iter() {
+            let slot = slot as usize;
+            for k in 0..D {
+                let (x, u) = (self.offset[slot][k], self.step_velocity[slot][k]);
+                velocities[slot][k] = start.step_velocity(x, self.start.velocity(x, u))?;
+            }
+        }
+        self.step_velocity = velocities;
+        self.gains = gains;
+        self.start = start;
+        self.tuning = *tuning;
+        self.band = RestBand::new(&self.threshold, tuning);
+        Ok(())
+    }
+
+    /// Advances every awake value by one time step, settles those whose motion left is
+    /// inside the rest band (every [`with_rest_check_every`](Self::with_rest_check_every)
+    /// steps), and reports what moved.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::from_coefficients(0.5, 0.5, 0.01)?)?;
+    /// let i = b.push([0.0])?;
+    /// b.set_target(i, [1.0]);
+    /// assert_eq!(b.step().moving, 1);
+    /// assert_eq!(b.position(i), Some([0.5]));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn step(&mut self) -> BatchMotion {
+        self.settled.clear();
+        let awake = self.awake.len();
+        if awake == 0 {
+            return BatchMotion::default();
+        }
+        let check = self.until_check == 0;
+        self.until_check = if check {
+            self.check_every - 1
+        } else {
+            self.until_check - 1
+        };
+        if !check {
+            self.advance_awake();
+            return BatchMotion {
+                moving: awake,
+                settled: 0,
+            };
+        }
+        let gains = self.gains;
+        let band = self.band;
+        if awake == self.len {
+            // Everything live is awake: one straight pass over the used slots. Removed
+            // slots hold a zero state, which a step leaves at zero.
+            let used = self.used;
+            let (offsets, velocities) = (&mut self.offset[..used], &mut self.step_velocity[..used]);
+            for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate() {
+                let mut inside = true;
+                for k in 0..D {
+                    S::advance(&gains, &mut x[k], &mut u[k]);
+                    inside &= band.contains(x[k], u[k]);
+                }
+                if inside && self.live[slot] {
+                    *x = [S::STATE_ZERO; D];
+                    *u = [S::STATE_ZERO; D];
+                    // Cannot fail: at most N slots settle.
+                    let _ = self.settled.push(slot as u16);
+                }
+            }
+        } else {
+            for &slot in self.awake.iter() {
+                let slot = slot as usize;
+                let (x, u) = (&mut self.offset[slot], &mut self.step_velocity[slot]);
+                let mut inside = true;
+                for k in 0..D {
+                    S::advance(&gains, &mut x[k], &mut u[k]);
+                    inside &= band.contains(x[k], u[k]);
+                }
+                if inside {
+                    *x = [S::STATE_ZERO; D];
+                    *u = [S::STATE_ZERO; D];
+                    let _ = self.settled.push(slot as u16);
+                }
+            }
+        }
+        for &slot in self.settled.iter() {
+            self.is_awake[slot as usize] = false;
+        }
+        let is_awake = &self.is_awake;
+        self.awake.retain(|&s| is_awake[s as usize]);
+        BatchMotion {
+            moving: self.awake.len(),
+            settled: self.settled.len(),
+        }
+    }
+
+    /// Advances every awake value by one time step and nothing else: no rest test. The
+    /// cheapest step; values advanced this way stay awake.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::from_coefficients(0.5, 0.5, 0.01)?)?;
+    /// let i = b.push([0.0])?;
+    /// b.set_target(i, [1.0]);
+    /// b.advance();
+    /// assert_eq!(b.position(i), Some([0.5]));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn advance(&mut self) {
+        self.settled.clear();
+        self.advance_awake();
+    }
+
+    fn advance_awake(&mut self) {
+        let gains = self.gains;
+        if self.awake.len() == self.len {
+            let used = self.used;
+            for (x, u) in self.offset[..used]
+                .iter_mut()
+                .zip(self.step_velocity[..used].iter_mut())
+            {
+                for k in 0..D {
+                    S::advance(&gains, &mut x[k], &mut u[k]);
+                }
+            }
+        } else {
+            for &slot in self.awake.iter() {
+                let slot = slot as usize;
+                for k in 0..D {
+                    S::advance(
+                        &gains,
+                        &mut self.offset[slot][k],
+                        &mut self.step_velocity[slot][k],
+                    );
+                }
+            }
+        }
+    }
+
+    /// The values that came to rest in the last [`SpringBatch::step`].
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// assert_eq!(b.just_settled().count(), 0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn just_settled(&self) -> impl Iterator<Item = BatchIndex> + '_ {
+        self.settled.iter().map(|&s| self.index_of(s as usize))
+    }
+
+    /// The awake values and their positions: what a redraw of the moving parts needs.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?;
+    /// let (i, _j) = (b.push([0.0])?, b.push([1.0])?);
+    /// b.set_target(i, [2.0]);
+    /// assert_eq!(b.moving().map(|(k, _)| k).collect::<Vec<_>>(), [i]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn moving(&self) -> impl Iterator<Item = (BatchIndex, [S; D])> + '_ {
+        self.awake.iter().map(|&s| {
+            let s = s as usize;
+            (self.index_of(s), self.position_of(s))
+        })
+    }
+
+    /// Every value and its position, in slot order.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?;
+    /// b.push([1.0])?;
+    /// b.push([2.0])?;
+    /// let sum: f32 = b.iter().map(|(_, p)| p[0]).sum();
+    /// assert_eq!(sum, 3.0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn iter(&self) -> impl Iterator<Item = (BatchIndex, [S; D])> + '_ {
+        (0..self.used)
+            .filter(|&s| self.live[s])
+            .map(|s| (self.index_of(s), self.position_of(s)))
+    }
+
+    /// A value's position, or `None` for a stale index.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 2, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([1.0, 2.0])?;
+    /// assert_eq!(b.position(i), Some([1.0, 2.0]));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn position(&self, index: BatchIndex) -> Option<[S; D]> {
+        self.slot(index).map(|s| self.position_of(s))
+    }
+
+    /// A value's target, or `None` for a stale index.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([1.0])?;
+    /// assert_eq!(b.target(i), Some([1.0]));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn target(&self, index: BatchIndex) -> Option<[S; D]> {
+        self.slot(index).map(|s| self.target[s])
+    }
+
+    /// A value's velocity in units per second (see
+    /// [`SpringValue::velocity`](crate::SpringValue::velocity)), or `None` for a stale
     /// index.
     ///
-    /// # Errors
-    ///
-    /// As [`SpringBatch::push`].
-    ///
     /// ```
-    /// use stiffspring::{RestThreshold, SpringBatch, Tuning};
-    ///
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push_with_threshold([0.0], Tuning::rigid(), RestThreshold::PIXELS)?;
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([1.0])?;
+    /// assert_eq!(b.velocity(i), Some([0.0]));
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn push_with_threshold(
-        &mut self,
-        position: [S; D],
-        tuning: Tuning,
-        threshold: RestThreshold,
-    ) -> Result<usize, Error> {
-        check_all(&position, Parameter::Position)?;
-        if self.offsets.is_full() {
-            return Err(Error::CapacityFull);
+    pub fn velocity(&self, index: BatchIndex) -> Option<[S; D]> {
+        let s = self.slot(index)?;
+        let mut v = [S::ZERO; D];
+        for (k, v) in v.iter_mut().enumerate() {
+            *v = self
+                .start
+                .velocity(self.offset[s][k], self.step_velocity[s][k]);
         }
-        let coefficients = Coefficients::new(&tuning);
-        let band = RestBand::new(&threshold, &coefficients, self.dt);
-        // All vectors have the same length and the check above found room in each, so
-        // none of these pushes can fail; the results are still not ignored silently.
-        let pushed = self.offsets.push([S::ZERO; D]).is_ok()
-            & self.step_velocities.push([S::ZERO; D]).is_ok()
-            & self.targets.push(position).is_ok()
-            & self.coefficients.push(coefficients).is_ok()
-            & self
-                .samplings
-                .push(Sampling::new(&tuning, &coefficients, self.dt))
-                .is_ok()
-            & self.bands.push(band).is_ok()
-            & self.thresholds.push(threshold).is_ok();
-        if pushed {
-            Ok(self.offsets.len() - 1)
-        } else {
-            Err(Error::CapacityFull)
-        }
+        Some(v)
     }
 
-    /// Moves the target of value `index`; it keeps its position and velocity and wakes
-    /// up, as [`SpringValue::set_target`](crate::SpringValue::set_target) does.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index; otherwise as
-    /// [`SpringValue::set_target`](crate::SpringValue::set_target).
+    /// Whether a value is at rest, or `None` for a stale index.
     ///
     /// ```
     /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push([0.0], Tuning::rigid())?;
-    /// batch.set_target(i, [3.0])?;
-    /// assert_eq!(batch.target(i)?, [3.0]);
-    /// assert!(batch.set_target(7, [3.0]).is_err());
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([1.0])?;
+    /// assert_eq!(b.is_at_rest(i), Some(true));
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn set_target(&mut self, index: usize, target: [S; D]) -> Result<(), Error> {
-        self.check_index(index)?;
-        check_all(&target, Parameter::Position)?;
-        let offset = offsets(&self.position(index)?, &target)?;
-        let sampling = self.samplings[index];
-        let mut moved = false;
-        let state = self.offsets[index]
-            .iter_mut()
-            .zip(&mut self.step_velocities[index]);
-        for ((x, u), to) in state.zip(offset) {
-            moved |= jump(x, u, &sampling, to);
-        }
-        self.targets[index] = target;
-        if moved {
-            self.wake(index);
-        }
-        Ok(())
+    pub fn is_at_rest(&self, index: BatchIndex) -> Option<bool> {
+        self.slot(index).map(|s| !self.is_awake[s])
     }
 
-    /// Gives value `index` a velocity in units per second, on its continuous trajectory
-    /// as [`SpringValue::fling`](crate::SpringValue::fling) does.
-    ///
-    /// # Errors
-    ///
-    /// As [`SpringBatch::set_target`], and [`Error::OutOfRange`] when the step velocity
-    /// leaves the backend's range.
+    /// How many values are awake.
     ///
     /// ```
     /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push([0.0], Tuning::from_frequency(1.0, 0.5, 0.01)?)?;
-    /// batch.fling(i, [100.0])?;
-    /// batch.step();
-    /// assert!(batch.position(i)?[0] > 0.9);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn fling(&mut self, index: usize, velocity: [S; D]) -> Result<(), Error> {
-        self.check_index(index)?;
-        check_all(&velocity, Parameter::Velocity)?;
-        let mut u = [S::ZERO; D];
-        for k in 0..D {
-            u[k] = self.samplings[index].step_velocity(self.offsets[index][k], velocity[k])?;
-        }
-        self.step_velocities[index] = u;
-        self.wake(index);
-        Ok(())
-    }
-
-    /// Retunes value `index`; its position and velocity are kept.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index, or for the
-    /// velocity when the new tuning needs a step velocity outside the backend's range.
-    ///
-    /// ```
-    /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push([1.0], Tuning::rigid())?;
-    /// batch.set_tuning(i, Tuning::from_coefficients(0.1, 0.3)?)?;
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn set_tuning(&mut self, index: usize, tuning: Tuning) -> Result<(), Error> {
-        self.check_index(index)?;
-        let coefficients = Coefficients::new(&tuning);
-        let sampling = Sampling::new(&tuning, &coefficients, self.dt);
-        let old = self.samplings[index];
-        let mut u = [S::ZERO; D];
-        for (k, x) in self.offsets[index].iter().enumerate() {
-            let velocity = old.velocity(*x, self.step_velocities[index][k]);
-            u[k] = sampling.step_velocity(*x, velocity)?;
-        }
-        self.step_velocities[index] = u;
-        self.bands[index] = RestBand::new(&self.thresholds[index], &coefficients, self.dt);
-        self.coefficients[index] = coefficients;
-        self.samplings[index] = sampling;
-        Ok(())
-    }
-
-    /// Advances every awake value by one step; values that come to rest snap to their
-    /// targets and leave the awake list.
-    ///
-    /// ```
-    /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push([0.0], Tuning::rigid())?;
-    /// batch.set_target(i, [1.0])?;
-    /// batch.step();
-    /// batch.step();
-    /// assert_eq!(batch.awake(), 0);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn step(&mut self) {
-        // Every per-value vector has the same length; slicing them to it once lets the
-        // compiler check each awake index against the bound once instead of four times.
-        let n = self.offsets.len();
-        let offsets = &mut self.offsets[..n];
-        let step_velocities = &mut self.step_velocities[..n];
-        let all_coefficients = &self.coefficients[..n];
-        let bands = &self.bands[..n];
-        let mut slot = 0;
-        while slot < self.awake.len() {
-            let i = self.awake[slot];
-            let mut inside = true;
-            let coefficients = &all_coefficients[i];
-            let band = &bands[i];
-            let offset = &mut offsets[i];
-            let step_velocity = &mut step_velocities[i];
-            for k in 0..D {
-                inside &= advance(&mut offset[k], &mut step_velocity[k], coefficients, band);
-            }
-            if inside {
-                *offset = [S::ZERO; D];
-                *step_velocity = [S::ZERO; D];
-                // `slot < len` here, so this cannot panic; the last awake index moves
-                // into `slot` and is stepped next.
-                self.awake.swap_remove(slot);
-            } else {
-                slot += 1;
-            }
-        }
-    }
-
-    /// The position of value `index`.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index.
-    ///
-    /// ```
-    /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4, 2>::new(0.01)?;
-    /// let i = batch.push([1.0, 2.0], Tuning::rigid())?;
-    /// assert_eq!(batch.position(i)?, [1.0, 2.0]);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn position(&self, index: usize) -> Result<[S; D], Error> {
-        self.check_index(index)?;
-        let mut p = self.targets[index];
-        for (p, x) in p.iter_mut().zip(self.offsets[index].iter()) {
-            *p = p.add(*x);
-        }
-        Ok(p)
-    }
-
-    /// The target of value `index`.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index.
-    ///
-    /// ```
-    /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push([1.0], Tuning::rigid())?;
-    /// assert_eq!(batch.target(i)?, [1.0]);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn target(&self, index: usize) -> Result<[S; D], Error> {
-        self.check_index(index)?;
-        Ok(self.targets[index])
-    }
-
-    /// The step velocity `u = v·dt` of value `index`.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index.
-    ///
-    /// ```
-    /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push([1.0], Tuning::rigid())?;
-    /// assert_eq!(batch.step_velocity(i)?, [0.0]);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn step_velocity(&self, index: usize) -> Result<[S; D], Error> {
-        self.check_index(index)?;
-        Ok(self.step_velocities[index])
-    }
-
-    /// True when value `index` is at rest on its target.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::OutOfRange`] with [`Parameter::Index`] for an unknown index.
-    ///
-    /// ```
-    /// use stiffspring::{SpringBatch, Tuning};
-    /// let mut batch = SpringBatch::<f32, 4>::new(0.01)?;
-    /// let i = batch.push([1.0], Tuning::rigid())?;
-    /// assert!(batch.is_at_rest(i)?);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn is_at_rest(&self, index: usize) -> Result<bool, Error> {
-        self.check_index(index)?;
-        Ok(!self.awake.contains(&index))
-    }
-
-    /// The number of values that are not at rest: the work one step does.
-    ///
-    /// ```
-    /// let batch = stiffspring::SpringBatch::<f32, 4>::new(0.01)?;
-    /// assert_eq!(batch.awake(), 0);
+    /// let b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// assert_eq!(b.awake(), 0);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn awake(&self) -> usize {
         self.awake.len()
     }
 
-    /// The number of values in the batch.
+    /// How many values the batch holds.
     ///
     /// ```
-    /// let batch = stiffspring::SpringBatch::<f32, 4>::new(0.01)?;
-    /// assert_eq!(batch.len(), 0);
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// b.push([0.0])?;
+    /// assert_eq!(b.len(), 1);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn len(&self) -> usize {
-        self.offsets.len()
+        self.len
     }
 
     /// True when the batch holds no value.
     ///
     /// ```
-    /// let batch = stiffspring::SpringBatch::<f32, 4>::new(0.01)?;
-    /// assert!(batch.is_empty());
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// assert!(SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?.is_empty());
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn is_empty(&self) -> bool {
-        self.offsets.is_empty()
+        self.len == 0
     }
 
-    fn check_index(&self, index: usize) -> Result<(), Error> {
-        if index < self.offsets.len() {
-            Ok(())
-        } else {
-            Err(Error::OutOfRange(Parameter::Index))
+    /// The tuning all values share.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let t = Tuning::rigid(0.01)?;
+    /// assert_eq!(SpringBatch::<f32, 1, 2>::new(&t)?.tuning(), t);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn tuning(&self) -> Tuning {
+        self.tuning
+    }
+
+    /// The rest threshold.
+    ///
+    /// ```
+    /// use stiffspring::{RestThreshold, SpringBatch, Tuning};
+    /// let b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// assert_eq!(b.rest_threshold(), RestThreshold::default());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn rest_threshold(&self) -> RestThreshold {
+        self.threshold
+    }
+
+    /// The live slot an index names.
+    fn slot(&self, index: BatchIndex) -> Option<usize> {
+        let s = index.slot as usize;
+        (s < N && self.live[s] && self.generation[s] == index.generation).then_some(s)
+    }
+
+    fn live_slot(&self, index: BatchIndex) -> Result<usize, Error> {
+        self.slot(index).ok_or(Error::Stale {
+            parameter: Parameter::Index,
+        })
+    }
+
+    fn index_of(&self, slot: usize) -> BatchIndex {
+        BatchIndex {
+            slot: slot as u16,
+            generation: self.generation[slot],
         }
     }
 
-    fn wake(&mut self, index: usize) {
-        if !self.awake.contains(&index) {
-            // The awake list has the same capacity as the batch and holds distinct
-            // indices, so there is always room.
-            let _ = self.awake.push(index);
+    fn position_of(&self, slot: usize) -> [S; D] {
+        let mut p = self.target[slot];
+        for (p, x) in p.iter_mut().zip(self.offset[slot].iter()) {
+            *p = p.add(S::narrow(*x));
+        }
+        p
+    }
+
+    fn wake(&mut self, slot: usize) {
+        if !self.is_awake[slot] {
+            self.is_awake[slot] = true;
+            // Cannot fail: a slot is in the list at most once.
+            let _ = self.awake.push(slot as u16);
+        }
+    }
+
+    fn sleep(&mut self, slot: usize) {
+        if self.is_awake[slot] {
+            self.is_awake[slot] = false;
+            if let Some(i) = self.awake.iter().position(|&s| s as usize == slot) {
+                self.awake.swap_remove(i);
+            }
         }
     }
 }

@@ -1,21 +1,23 @@
 //! The one error type of the crate.
 //!
-//! Every check happens at set-up (constructors, setters): the stepping functions never
-//! fail, so they return nothing. Each variant names the argument that was wrong, so a
-//! firmware log (or `defmt`) says exactly what to fix.
+//! Every check happens at set-up (constructors, `try_` setters): the stepping functions
+//! never fail, so they return no `Result`. Each variant names the argument that was
+//! wrong, the value it had and the bound it broke, so a firmware log (`Display` or
+//! `defmt`) says what to change. Formatting code is only linked when it is used.
 
 use core::fmt;
 
 /// Which argument of a set-up call was rejected.
 ///
 /// ```
-/// use stiffspring::{Error, Parameter, Tuning};
+/// use stiffspring::{Bound, Error, Parameter, Tuning};
 ///
-/// let err = Tuning::from_coefficients(1.5, 0.2).unwrap_err();
-/// assert_eq!(err, Error::OutOfRange(Parameter::Stiffness));
+/// let err = Tuning::from_coefficients(1.5, 0.2, 0.01).unwrap_err();
+/// assert_eq!(err.parameter(), Some(Parameter::Stiffness));
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Parameter {
     /// The stiffness coefficient `C_k`.
     Stiffness,
@@ -33,7 +35,7 @@ pub enum Parameter {
     SpringConstant,
     /// A physical damping constant `c`.
     DampingConstant,
-    /// A duration, in seconds (SwiftUI's `duration`).
+    /// A duration, in seconds (SwiftUI's `duration`, `response`).
     Duration,
     /// SwiftUI's `bounce`.
     Bounce,
@@ -41,10 +43,16 @@ pub enum Parameter {
     Position,
     /// A velocity.
     Velocity,
+    /// The step velocity `u = v·dt` that a start, a fling or a retarget needs.
+    StepVelocity,
     /// A rest threshold.
     Threshold,
-    /// An index (or id) that names no live element.
+    /// A batch index that names no live value.
     Index,
+    /// A particle id that names no live particle.
+    Particle,
+    /// A spring id that names no live spring.
+    Spring,
     /// A spring's rest length.
     RestLength,
     /// An external acceleration (gravity).
@@ -55,6 +63,10 @@ pub enum Parameter {
     Inertia,
     /// A knob's motor torque limit.
     TorqueLimit,
+    /// A knob's stiffness (of detents, endstops, magnets, the return spring).
+    KnobStiffness,
+    /// A knob's damping.
+    KnobDamping,
     /// A knob's strength (detents, endstops, magnets, return spring), or the sum of the
     /// strengths that act at once.
     Strength,
@@ -66,106 +78,342 @@ pub enum Parameter {
     Hysteresis,
     /// A knob's magnetic detent capture radius, or the spacing of its magnetic detents.
     CaptureRadius,
-    /// A knob's encoder resolution (an angle per count).
+    /// A knob's encoder resolution.
     EncoderResolution,
+    /// A control loop rate, in hertz.
+    LoopRate,
+}
+
+/// The range a rejected number had to lie in.
+///
+/// ```
+/// use stiffspring::Bound;
+///
+/// assert!(Bound::Within { min: 0.0, max: 1.0 }.contains(1.0));
+/// assert!(!Bound::Positive.contains(0.0));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Bound {
+    /// Strictly greater than zero.
+    Positive,
+    /// Zero or more.
+    NonNegative,
+    /// In the closed interval `[min, max]`.
+    Within {
+        /// The smallest value accepted.
+        min: f64,
+        /// The largest value accepted.
+        max: f64,
+    },
+    /// Strictly below `max`.
+    Below {
+        /// The first value rejected.
+        max: f64,
+    },
+    /// At most `max` in magnitude.
+    MagnitudeAtMost {
+        /// The largest magnitude accepted.
+        max: f64,
+    },
+    /// At least `min`.
+    AtLeast {
+        /// The smallest value accepted.
+        min: f64,
+    },
+}
+
+impl Bound {
+    /// True when `value` satisfies the bound (NaN never does).
+    ///
+    /// ```
+    /// assert!(stiffspring::Bound::MagnitudeAtMost { max: 2.0 }.contains(-2.0));
+    /// ```
+    pub const fn contains(&self, value: f64) -> bool {
+        match *self {
+            Bound::Positive => value > 0.0,
+            Bound::NonNegative => value >= 0.0,
+            Bound::Within { min, max } => value >= min && value <= max,
+            Bound::Below { max } => value < max,
+            Bound::MagnitudeAtMost { max } => value >= -max && value <= max,
+            Bound::AtLeast { min } => value >= min,
+        }
+    }
+}
+
+/// What would make an unrepresentable set-up representable (see
+/// [`Error::Unrepresentable`]).
+///
+/// ```
+/// use stiffspring::Remedy;
+/// assert_ne!(Remedy::WiderBackend, Remedy::LowerRate);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Remedy {
+    /// Step less often (a larger `dt`): the coefficients grow as `dt²`.
+    LowerRate,
+    /// Step more often (a smaller `dt`): a heavily overdamped spring extrapolated one
+    /// step back needs a step velocity that grows as `e^{2ζω·dt}`.
+    HigherRate,
+    /// Measure positions in a larger unit, so that the same motion takes fewer units.
+    LargerUnit,
+    /// A backend with more range or precision (`I32F32`, `f32`, `f64`).
+    WiderBackend,
 }
 
 /// Everything that can go wrong at set-up.
 ///
 /// ```
-/// use stiffspring::{Error, Parameter, Tuning};
+/// use stiffspring::{Bound, Error, Parameter, Tuning};
 ///
 /// assert_eq!(
 ///     Tuning::from_frequency(f64::NAN, 0.5, 1.0 / 60.0),
-///     Err(Error::NotFinite(Parameter::Frequency))
+///     Err(Error::NotFinite { parameter: Parameter::Frequency })
 /// );
+/// let err = Tuning::from_coefficients(0.5, -0.1, 0.01).unwrap_err();
+/// assert_eq!(
+///     err,
+///     Error::OutOfRange {
+///         parameter: Parameter::Damping,
+///         value: -0.1,
+///         bound: Bound::Within { min: 0.0, max: 1.0 },
+///     }
+/// );
+/// assert_eq!(err.to_string(), "Damping = -0.1 is outside [0, 1]");
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Error {
     /// The argument was NaN or infinite.
-    NotFinite(Parameter),
-    /// The argument must be strictly positive and was zero or negative.
-    NotPositive(Parameter),
-    /// The argument must not be negative.
-    Negative(Parameter),
-    /// The argument lies outside its documented range (for coefficients: outside
-    /// `[0, 1]²`, or outside the exact stability region for the extended constructor; for
-    /// positions: beyond the backend's safe magnitude, see [`Scalar::SAFE_MAGNITUDE`]).
-    ///
-    /// [`Scalar::SAFE_MAGNITUDE`]: crate::Scalar::SAFE_MAGNITUDE
-    OutOfRange(Parameter),
+    NotFinite {
+        /// Which argument.
+        parameter: Parameter,
+    },
+    /// The argument lies outside the range the call accepts.
+    OutOfRange {
+        /// Which argument.
+        parameter: Parameter,
+        /// The value it had.
+        value: f64,
+        /// The range it must lie in.
+        bound: Bound,
+    },
+    /// Several arguments that act together add up to more than their limit (a knob's
+    /// strengths, for example). `parameter` is the kind of the terms.
+    SumTooLarge {
+        /// Which kind of argument.
+        parameter: Parameter,
+        /// The sum of the terms.
+        sum: f64,
+        /// The largest sum accepted.
+        limit: f64,
+    },
+    /// The backend cannot hold the value at its resolution or in its range: a
+    /// coefficient below its resolution, or a start velocity beyond its range. Nothing
+    /// was changed; `remedy` says what would work.
+    Unrepresentable {
+        /// Which quantity.
+        parameter: Parameter,
+        /// The backend's name (`"I16F16"`, ...).
+        backend: &'static str,
+        /// The value that was needed.
+        value: f64,
+        /// The smallest (for a resolution) or largest (for a range) value the backend
+        /// holds.
+        limit: f64,
+        /// What would make it representable.
+        remedy: Remedy,
+    },
     /// A fixed-capacity container is full; nothing was added.
-    CapacityFull,
+    CapacityFull {
+        /// The container's capacity.
+        capacity: usize,
+    },
+    /// An id or index that names nothing live: removed, or from another container.
+    Stale {
+        /// [`Parameter::Particle`], [`Parameter::Spring`] or [`Parameter::Index`].
+        parameter: Parameter,
+    },
     /// A spring from a particle to itself.
     SameParticle,
-    /// The operation needs a free particle and the particle is pinned (for example,
-    /// giving a pinned particle a velocity or an impulse).
+    /// The operation needs a free particle and the particle is pinned (giving a pinned
+    /// particle a velocity or an impulse).
     Pinned,
     /// A spring's coefficient exceeds the network's safe limit for the number of springs
     /// its particles share (see [`network_limit`](crate::scene::network_limit)), and the
     /// scene's policy is to reject; nothing was changed.
-    ExceedsNetworkLimit,
+    ExceedsNetworkLimit {
+        /// The largest coefficient of the spring (`C_k` or `C_d`).
+        coefficient: f64,
+        /// The limit for its particles.
+        limit: f64,
+    },
     /// An undamped oscillator whose frequency is a multiple of half the sample rate
     /// (`f·dt = k/2`): its sampled map has a double pole at `z = ±1`, which grows without
     /// bound from a general start, so no valid tuning reproduces it.
-    Aliased,
-    /// The tuning has no continuous damped oscillator behind it at this `dt`: its map has
-    /// a pole on the negative real axis or at zero (for example [`Tuning::rigid`], or any
+    Aliased {
+        /// `f·dt` of the oscillator.
+        frequency_times_dt: f64,
+    },
+    /// The tuning has no continuous damped oscillator behind it: its map has a pole on
+    /// the negative real axis or at zero (for example [`Tuning::rigid`], or any
     /// `C_d ≥ 1`), or `C_k = 0`.
     ///
     /// [`Tuning::rigid`]: crate::Tuning::rigid
     NoContinuousEquivalent,
+    /// A spring tuned for one time step was added to a scene stepped at another.
+    TimeStepMismatch {
+        /// The scene's `dt`.
+        expected: f64,
+        /// The tuning's `dt`.
+        found: f64,
+    },
+}
+
+impl Error {
+    /// The argument the error is about, where there is one.
+    ///
+    /// ```
+    /// use stiffspring::{Error, Parameter};
+    /// assert_eq!(Error::SameParticle.parameter(), None);
+    /// assert_eq!(
+    ///     Error::NotFinite { parameter: Parameter::Mass }.parameter(),
+    ///     Some(Parameter::Mass)
+    /// );
+    /// ```
+    pub const fn parameter(&self) -> Option<Parameter> {
+        match *self {
+            Error::NotFinite { parameter }
+            | Error::OutOfRange { parameter, .. }
+            | Error::SumTooLarge { parameter, .. }
+            | Error::Unrepresentable { parameter, .. }
+            | Error::Stale { parameter } => Some(parameter),
+            Error::Aliased { .. } => Some(Parameter::Frequency),
+            Error::TimeStepMismatch { .. } => Some(Parameter::TimeStep),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for Bound {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Bound::Positive => f.write_str("(0, ∞)"),
+            Bound::NonNegative => f.write_str("[0, ∞)"),
+            Bound::Within { min, max } => write!(f, "[{min}, {max}]"),
+            Bound::Below { max } => write!(f, "(−∞, {max})"),
+            Bound::MagnitudeAtMost { max } => write!(f, "[−{max}, {max}]"),
+            Bound::AtLeast { min } => write!(f, "[{min}, ∞)"),
+        }
+    }
+}
+
+impl fmt::Display for Remedy {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Remedy::LowerRate => "step at a lower rate",
+            Remedy::HigherRate => "step at a higher rate",
+            Remedy::LargerUnit => "measure positions in a larger unit",
+            Remedy::WiderBackend => "use a wider backend (I32F32, f32 or f64)",
+        })
+    }
 }
 
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Error::NotFinite(p) => write!(f, "{p:?} is NaN or infinite"),
-            Error::NotPositive(p) => write!(f, "{p:?} must be greater than zero"),
-            Error::Negative(p) => write!(f, "{p:?} must not be negative"),
-            Error::OutOfRange(p) => write!(f, "{p:?} is outside its documented range"),
-            Error::CapacityFull => f.write_str("capacity is full"),
+        match *self {
+            Error::NotFinite { parameter } => write!(f, "{parameter:?} is NaN or infinite"),
+            Error::OutOfRange {
+                parameter,
+                value,
+                bound,
+            } => write!(f, "{parameter:?} = {value} is outside {bound}"),
+            Error::SumTooLarge {
+                parameter,
+                sum,
+                limit,
+            } => write!(
+                f,
+                "the {parameter:?} terms that act together sum to {sum}, above {limit}"
+            ),
+            Error::Unrepresentable {
+                parameter,
+                backend,
+                value,
+                limit,
+                remedy,
+            } => write!(
+                f,
+                "{parameter:?} = {value} is beyond what {backend} holds ({limit}): {remedy}"
+            ),
+            Error::CapacityFull { capacity } => write!(f, "capacity {capacity} is full"),
+            Error::Stale { parameter } => write!(f, "the {parameter:?} id names nothing live"),
             Error::SameParticle => f.write_str("a spring needs two different particles"),
             Error::Pinned => f.write_str("the particle is pinned"),
-            Error::ExceedsNetworkLimit => f.write_str("coefficient above the network's safe limit"),
-            Error::Aliased => f.write_str("undamped oscillator aliases onto z = ±1 at this dt"),
+            Error::ExceedsNetworkLimit { coefficient, limit } => write!(
+                f,
+                "coefficient {coefficient} is above the network's safe limit {limit}"
+            ),
+            Error::Aliased { frequency_times_dt } => write!(
+                f,
+                "an undamped oscillator at f·dt = {frequency_times_dt} aliases onto z = ±1"
+            ),
             Error::NoContinuousEquivalent => {
-                f.write_str("tuning has no continuous oscillator equivalent")
+                f.write_str("the tuning has no continuous oscillator equivalent")
             }
+            Error::TimeStepMismatch { expected, found } => write!(
+                f,
+                "the tuning is sampled at dt = {found}, the scene steps at dt = {expected}"
+            ),
         }
     }
 }
 
 impl core::error::Error for Error {}
 
-/// Checks that `value` is finite and strictly positive.
-pub(crate) fn positive(value: f64, what: Parameter) -> Result<f64, Error> {
+/// `value`, if it is finite and satisfies `bound`.
+pub(crate) const fn check(value: f64, parameter: Parameter, bound: Bound) -> Result<f64, Error> {
     if !value.is_finite() {
-        Err(Error::NotFinite(what))
-    } else if value <= 0.0 {
-        Err(Error::NotPositive(what))
+        Err(Error::NotFinite { parameter })
+    } else if !bound.contains(value) {
+        Err(Error::OutOfRange {
+            parameter,
+            value,
+            bound,
+        })
     } else {
         Ok(value)
     }
 }
 
-/// Checks that `value` is finite.
-pub(crate) fn finite(value: f64, what: Parameter) -> Result<f64, Error> {
+/// `value`, if it is finite and strictly positive.
+pub(crate) const fn positive(value: f64, parameter: Parameter) -> Result<f64, Error> {
+    check(value, parameter, Bound::Positive)
+}
+
+/// `value`, if it is finite and not negative.
+pub(crate) const fn non_negative(value: f64, parameter: Parameter) -> Result<f64, Error> {
+    check(value, parameter, Bound::NonNegative)
+}
+
+/// `value`, if it is finite.
+pub(crate) const fn finite(value: f64, parameter: Parameter) -> Result<f64, Error> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(Error::NotFinite(what))
+        Err(Error::NotFinite { parameter })
     }
 }
 
-/// Checks that `value` is finite and not negative.
-pub(crate) fn non_negative(value: f64, what: Parameter) -> Result<f64, Error> {
-    if !value.is_finite() {
-        Err(Error::NotFinite(what))
-    } else if value < 0.0 {
-        Err(Error::Negative(what))
-    } else {
-        Ok(value)
-    }
+/// `?` for `const fn`, where the `Try` trait is not available.
+macro_rules! tri {
+    ($e:expr) => {
+        match $e {
+            Ok(v) => v,
+            Err(e) => return Err(e),
+        }
+    };
 }
+pub(crate) use tri;

@@ -1,15 +1,24 @@
-//! When a spring counts as settled: thresholds in the user's units.
+//! When a spring counts as settled: a threshold in the user's units.
 //!
-//! In the spirit of Android's `DynamicAnimation` "minimum visible change": a value is at
-//! rest when it is closer to its target than a change nobody would see, and moves slower
-//! than that. At rest it snaps exactly to the target and costs nothing until it is
-//! retargeted.
+//! A value is at rest when the motion it has left is smaller than a change nobody would
+//! see. At rest it snaps exactly to its target and costs nothing until it is moved.
 
 use crate::error::{Error, Parameter, positive};
-use crate::kernel::Coefficients;
 use crate::scalar::Scalar;
+use crate::tuning::Tuning;
 
-/// Position and velocity thresholds below which a spring is at rest.
+/// The smallest motion that still counts: a position threshold (the user's unit) and a
+/// velocity threshold (units per second).
+///
+/// A spring settles when **the amplitude of the motion it has left** is below the
+/// position threshold and it moves slower than the velocity threshold. The amplitude
+/// matters, not just the offset: a slow spring passes its target fast and turns far from
+/// it, and a test on the offset and the velocity alone (Android's, for one) lets a 1 Hz
+/// spring with ζ = 0.1 snap while it still swings 8.5 times the position threshold.
+/// Here the step-velocity band is also limited by `position·√C_k`: an undamped spring of
+/// amplitude `A` crosses its target with step velocity `A·√C_k` exactly (`C_k = 4·sin²(θ/2)`),
+/// so a spring that passes both tests has less than the threshold left (to a factor
+/// `1 + θ/4`, measured in `tests/value_behaviour.rs`).
 ///
 /// ```
 /// use stiffspring::RestThreshold;
@@ -41,16 +50,21 @@ impl RestThreshold {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] for either argument.
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for either argument `≤ 0`.
     ///
     /// ```
     /// assert!(stiffspring::RestThreshold::new(0.0, 1.0).is_err());
     /// ```
-    pub fn new(position: f64, velocity: f64) -> Result<Self, Error> {
-        Ok(RestThreshold {
-            position: positive(position, Parameter::Threshold)?,
-            velocity: positive(velocity, Parameter::Threshold)?,
-        })
+    pub const fn new(position: f64, velocity: f64) -> Result<Self, Error> {
+        let position = match positive(position, Parameter::Threshold) {
+            Ok(p) => p,
+            Err(e) => return Err(e),
+        };
+        let velocity = match positive(velocity, Parameter::Threshold) {
+            Ok(v) => v,
+            Err(e) => return Err(e),
+        };
+        Ok(RestThreshold { position, velocity })
     }
 
     /// Android's rule: from the smallest change of the value a user can see,
@@ -62,18 +76,18 @@ impl RestThreshold {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`].
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for a change `≤ 0`.
     ///
     /// ```
     /// let alpha = stiffspring::RestThreshold::from_min_visible_change(1.0 / 256.0)?;
     /// assert_eq!(alpha.position(), 0.75 / 256.0);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn from_min_visible_change(change: f64) -> Result<Self, Error> {
-        Ok(Self::from_visible_change(positive(
-            change,
-            Parameter::Threshold,
-        )?))
+    pub const fn from_min_visible_change(change: f64) -> Result<Self, Error> {
+        match positive(change, Parameter::Threshold) {
+            Ok(c) => Ok(Self::from_visible_change(c)),
+            Err(e) => Err(e),
+        }
     }
 
     const fn from_visible_change(change: f64) -> Self {
@@ -105,93 +119,56 @@ impl RestThreshold {
 
 impl Default for RestThreshold {
     /// A thousandth of a unit: fine enough for pixels and for values in `[0, 1]` alike.
+    ///
+    /// ```
+    /// let t = stiffspring::RestThreshold::default();
+    /// assert_eq!((t.position(), t.velocity()), (0.75e-3, 0.046875));
+    /// ```
     fn default() -> Self {
         RestThreshold::from_visible_change(1e-3)
     }
 }
 
-/// A [`RestThreshold`] converted for one spring and one backend at set-up: the offset
-/// threshold and the *step* velocity threshold (`velocity·dt`), both widened to cover
-/// the fixed-point dead band so that every trajectory reaches it.
+/// A [`RestThreshold`] converted for one tuning and one backend at set-up: the offset
+/// band and the step-velocity band, in the state format.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct RestBand<S: Scalar> {
-    pub(crate) offset: S,
-    pub(crate) step_velocity: S,
-    /// [`Scalar::SAFE_MAGNITUDE`] in the backend: the bound on a value's offset.
-    pub(crate) limit: S,
-    /// The lower ends of the band for fixed point (see [`RestBand::contains`]).
-    offset_low: S,
-    step_velocity_low: S,
+    pub(crate) offset: S::State,
+    pub(crate) step_velocity: S::State,
 }
 
 impl<S: Scalar> RestBand<S> {
-    pub(crate) fn new(threshold: &RestThreshold, coefficients: &Coefficients<S>, dt: f64) -> Self {
+    pub(crate) fn new(threshold: &RestThreshold, tuning: &Tuning) -> Self {
+        // Box |x| ≤ p/√2, |u| ≤ p·√C_k/√2: an undamped spring inside it has an amplitude
+        // below p·(1 + θ/4) (see `RestThreshold`).
+        let p = threshold.position * core::f64::consts::FRAC_1_SQRT_2;
+        let by_amplitude = p * crate::math::sqrt(tuning.stiffness());
+        let by_speed = threshold.velocity * tuning.dt();
+        let u = if by_amplitude < by_speed {
+            by_amplitude
+        } else {
+            by_speed
+        };
+        // Fixed point: at least a position's last bit, so that rounding the state to a
+        // position never hides motion the band would have caught. The spring's dead band
+        // is below a last bit (set-up refuses C_k below the state's resolution).
         let lsb = S::RESOLUTION;
-        let ck = S::coef_to_f64(coefficients.stiffness());
-        // Products are truncated toward zero, so with u = 0 and |C_k·x| < 1 LSB the
-        // response is 0: the spring stops for good anywhere in |x| < 1/C_k LSB
-        // (tests/fixed_rounding.rs measures it). One LSB more covers the rounding of the
-        // threshold itself. A spring with C_k = 0 has no pull toward its target, so
-        // nothing is widened.
-        // Floats have no dead band (`RESOLUTION` is 0): testing the constant first lets
-        // the compiler drop the division, and with it the soft-float `f64` division
-        // routine (0.9 KiB) from an `f32` firmware (scripts/size-report).
-        let dead_band = if lsb > 0.0 && ck > 0.0 {
-            (1.0 / ck + 1.0) * lsb
-        } else {
-            0.0
+        let clamp = |v: f64| {
+            let v = if v < lsb { lsb } else { v };
+            // At most half the state's range, so that `Scalar::within` cannot overflow.
+            let half = 0.5 * S::STATE_MAX;
+            S::state_from_f64(if v > half { half } else { v })
         };
-        // Beyond the article's square (C_k > 1: an undersampled exact map, or the extended
-        // constructor) truncation no longer always stops dead: it can end in a limit
-        // cycle, measured at a few LSB with moderate damping and near 1/C_d LSB with very
-        // light damping (tests/fixed_point_limits.rs). Cover 4/C_d LSB of offset, and
-        // twice that of step velocity (a cycle's |u| is at most 2·|x|). An undamped spring
-        // (C_d = 0) never settles, as in floats.
-        let cd = 1.0 - S::coef_to_f64(coefficients.retention());
-        let cycle = if lsb > 0.0 && ck > 1.0 && cd > 0.0 {
-            (4.0 / cd + 4.0) * lsb
-        } else {
-            0.0
-        };
-        let offset = S::from_f64(threshold.position.max(dead_band).max(cycle));
-        let step_velocity = S::from_f64((threshold.velocity * dt).max(lsb).max(2.0 * cycle));
         RestBand {
-            offset,
-            step_velocity,
-            limit: S::from_f64(S::SAFE_MAGNITUDE),
-            offset_low: lower_end(offset),
-            step_velocity_low: lower_end(step_velocity),
+            offset: clamp(p),
+            step_velocity: clamp(u),
         }
     }
 
     /// True when both the offset and the step velocity are inside the band.
-    ///
-    /// Floats test `|x| ≤ band` (an `abs` is one instruction). Fixed point tests
-    /// `low ≤ x ≤ band` instead: its saturating `abs` costs five instructions on a
-    /// Cortex-M, two comparisons cost none more, and `low` is chosen so that the answer is
-    /// the same for every `x`.
     #[inline(always)]
-    pub(crate) fn contains(&self, offset: S, step_velocity: S) -> bool {
-        if S::RESOLUTION > 0.0 {
-            self.offset_low <= offset
-                && offset <= self.offset
-                && self.step_velocity_low <= step_velocity
-                && step_velocity <= self.step_velocity
-        } else {
-            offset.abs() <= self.offset && step_velocity.abs() <= self.step_velocity
-        }
-    }
-}
-
-/// The `low` of `low ≤ x ≤ band` that accepts exactly the `x` with
-/// `saturating_abs(x) ≤ band`: `−band`, except that a band at the top of the range also
-/// accepts the bottom of the range (whose saturated magnitude is the top).
-fn lower_end<S: Scalar>(band: S) -> S {
-    let top = S::from_f64(f64::MAX);
-    if band == top {
-        S::from_f64(-f64::MAX)
-    } else {
-        band.neg()
+    pub(crate) fn contains(&self, offset: S::State, step_velocity: S::State) -> bool {
+        S::within(offset, self.offset) & S::within(step_velocity, self.step_velocity)
     }
 }

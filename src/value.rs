@@ -1,403 +1,490 @@
 //! A value that springs toward a target: the UI animation building block.
 //!
 //! The state is kept relative to the target, as the offset `x = position − target` and
-//! the step velocity `u = v·dt`, so that one step is exactly the kernel's response
-//! followed by one add per dimension:
+//! the kept step velocity `ũ = (1 − C_d)·u` (`u = v·dt`), in the backend's state format,
+//! so that one step is
 //!
 //! ```text
-//! u ← (1 − C_d)·u − C_k·x        x ← x + u
+//! u ← ũ − C_k·x        x ← x + u        ũ ← u − C_d·u
 //! ```
 //!
-//! Retargeting moves the offset and keeps the position and the velocity; with a tuning
-//! from the exact map, the value then follows exactly the continuous spring whose target
-//! jumped at that instant (see the `sampling` module). When both the offset and the step
-//! velocity fall inside the rest band, the value snaps exactly to its target and
-//! [`SpringValue::step`] returns at once until something moves it again.
+//! Retargeting moves the offset by exactly the change of the target and keeps the
+//! position and the velocity; with a tuning from the exact map, the value then follows
+//! exactly the continuous spring whose target jumped at that instant (see
+//! [`Oscillator::start_weights`](crate::Oscillator::start_weights)). When the motion left falls inside the rest band the value
+//! snaps exactly to its target, and [`SpringValue::step`] returns at once until
+//! something moves it again.
 
-use crate::error::{Error, Parameter, positive};
-use crate::kernel::Coefficients;
+use crate::error::{Bound, Error, Parameter, Remedy};
+use crate::motion::Motion;
 use crate::rest::{RestBand, RestThreshold};
-use crate::sampling::Sampling;
 use crate::scalar::Scalar;
+use crate::start::Start;
 use crate::tuning::Tuning;
 
 /// A `D`-dimensional value springing toward a target, in backend `S`.
 ///
-/// ```
-/// use stiffspring::{SpringValue, Tuning};
+/// Its time step is its tuning's: there is no second `dt` to get wrong.
 ///
-/// let dt = 1.0 / 60.0;
-/// let tuning = Tuning::from_frequency(2.0, 1.0, dt)?; // 2 Hz, critically damped
-/// let mut x = SpringValue::<f32, 2>::new([0.0, 0.0], tuning, dt)?;
-/// x.set_target([100.0, 40.0])?;
+/// **The UI path cannot fail.** [`set_target`](SpringValue::set_target),
+/// [`set_position`](SpringValue::set_position) and [`fling`](SpringValue::fling) take any
+/// input: NaN is ignored, and what is out of range saturates (documented on each). Their
+/// `try_` twins report the same cases as an [`Error`] and leave the value unchanged.
+///
+/// ```
+/// use stiffspring::{Motion, SpringValue, Tuning};
+///
+/// let tuning = Tuning::from_frequency(2.0, 1.0, 1.0 / 60.0)?; // 2 Hz, critically damped
+/// let mut card = SpringValue::<f32, 2>::new([0.0, 0.0], &tuning)?;
+/// card.set_target([100.0, 40.0]);
 /// let mut frames = 0;
-/// while !x.is_at_rest() {
-///     x.step();
+/// while card.step() != Motion::Settled {
 ///     frames += 1;
 /// }
-/// assert_eq!(x.position(), [100.0, 40.0]); // snapped exactly
+/// assert_eq!(card.position(), [100.0, 40.0]); // snapped exactly
 /// assert!(frames < 90);
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct SpringValue<S: Scalar, const D: usize> {
-    offset: [S; D],
-    step_velocity: [S; D],
+pub struct SpringValue<S: Scalar, const D: usize = 1> {
+    offset: [S::State; D],
+    step_velocity: [S::State; D],
+    gains: S::Gains,
     target: [S; D],
-    coefficients: Coefficients<S>,
-    sampling: Sampling<S>,
-    threshold: RestThreshold,
     band: RestBand<S>,
-    dt: f64,
     at_rest: bool,
+    start: Start<S>,
+    threshold: RestThreshold,
+    tuning: Tuning,
 }
 
-/// A one-dimensional [`SpringValue`].
-///
-/// ```
-/// use stiffspring::{SpringValue1, Tuning};
-/// let v = SpringValue1::<f32>::new([0.0], Tuning::rigid(), 0.01)?;
-/// assert_eq!(v.position(), [0.0]);
-/// # Ok::<(), stiffspring::Error>(())
-/// ```
-pub type SpringValue1<S> = SpringValue<S, 1>;
-
-/// Advances one component of a spring toward its target by one step and reports whether
-/// it is inside its rest band. The single place where a value (or a batch member) steps.
-#[inline(always)]
-pub(crate) fn advance<S: Scalar>(
-    offset: &mut S,
-    step_velocity: &mut S,
-    coefficients: &Coefficients<S>,
-    band: &RestBand<S>,
-) -> bool {
-    let u = coefficients.respond(*offset, *step_velocity);
-    // A spring with (almost) no pull and no damping drifts for ever: bound the offset at
-    // the backend's safe magnitude so that a float never reaches infinity (the identity
-    // in fixed point, which saturates anyway).
-    let x = offset.add(u).clamp_magnitude(band.limit);
-    *step_velocity = u;
-    *offset = x;
-    band.contains(x, u)
+/// The gains of `tuning` in backend `S`, or the error that says why they do not exist.
+pub(crate) fn gains_of<S: Scalar>(tuning: &Tuning) -> Result<S::Gains, Error> {
+    S::gains(tuning.stiffness(), tuning.damping()).ok_or(Error::Unrepresentable {
+        parameter: Parameter::Stiffness,
+        backend: S::NAME,
+        value: tuning.stiffness(),
+        limit: S::RESOLUTION,
+        remedy: if S::RESOLUTION > 0.0 {
+            Remedy::LowerRate
+        } else {
+            Remedy::WiderBackend
+        },
+    })
 }
 
-/// Moves one component's offset to `to` with its velocity kept (`u += P·Δx`, see the
-/// `sampling` module) and reports whether it moved. Shared by values and batches.
-pub(crate) fn jump<S: Scalar>(
-    offset: &mut S,
-    step_velocity: &mut S,
-    sampling: &Sampling<S>,
-    to: S,
-) -> bool {
-    let delta = to.sub(*offset);
-    *step_velocity = sampling.shift(*step_velocity, delta);
-    *offset = to;
-    delta != S::ZERO
-}
-
-/// The offsets `position − target`, each of which must stay within the backend's safe
-/// magnitude (in fixed point: not saturate).
-pub(crate) fn offsets<S: Scalar, const D: usize>(
-    position: &[S; D],
-    target: &[S; D],
-) -> Result<[S; D], Error> {
-    let mut out = [S::ZERO; D];
-    for ((o, p), t) in out.iter_mut().zip(position).zip(target) {
-        if (p.to_f64() - t.to_f64()).abs() > S::SAFE_MAGNITUDE - S::RESOLUTION {
-            return Err(Error::OutOfRange(Parameter::Position));
-        }
-        *o = p.sub(*t);
+/// `value` as a position, or why not: not finite, or beyond [`Scalar::MAX`].
+pub(crate) fn check_position<S: Scalar>(value: S, parameter: Parameter) -> Result<S, Error> {
+    let v = value.to_f64();
+    if !v.is_finite() {
+        Err(Error::NotFinite { parameter })
+    } else if v.abs() > S::MAX {
+        Err(Error::OutOfRange {
+            parameter,
+            value: v,
+            bound: Bound::MagnitudeAtMost { max: S::MAX },
+        })
+    } else {
+        Ok(value)
     }
-    Ok(out)
 }
 
-/// Values must be finite and within the backend's safe magnitude.
-pub(crate) fn check_all<S: Scalar, const D: usize>(
-    values: &[S; D],
-    what: Parameter,
-) -> Result<(), Error> {
-    check_within(values, S::SAFE_MAGNITUDE, what)
-}
-
-/// Values must be finite and at most `bound` in magnitude (`SAFE_MAGNITUDE` for values,
-/// `NETWORK_MAGNITUDE` for scenes).
-pub(crate) fn check_within<S: Scalar, const D: usize>(
-    values: &[S; D],
-    bound: f64,
-    what: Parameter,
-) -> Result<(), Error> {
-    for v in values.iter().map(|v| v.to_f64()) {
-        if !v.is_finite() {
-            return Err(Error::NotFinite(what));
-        }
-        if v.abs() > bound {
-            return Err(Error::OutOfRange(what));
-        }
+/// `value` made usable by an infallible setter: `None` for NaN, else saturated to
+/// [`Scalar::MAX`].
+pub(crate) fn saturate<S: Scalar>(value: S) -> Option<S> {
+    let v = value.to_f64();
+    if v.is_nan() {
+        None
+    } else if v.abs() > S::MAX {
+        Some(S::from_f64(if v > 0.0 { S::MAX } else { -S::MAX }))
+    } else {
+        Some(value)
     }
-    Ok(())
 }
 
 impl<S: Scalar, const D: usize> SpringValue<S, D> {
-    /// A value at rest at `position`, tuned by `tuning`, stepped every `dt` seconds, with
-    /// the default [`RestThreshold`] (a thousandth of a unit).
+    /// A value at rest at `position`, tuned by `tuning` (which also sets its time step),
+    /// with the default [`RestThreshold`].
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for a position; [`Error::NotFinite`]
-    /// or [`Error::NotPositive`] for `dt`.
+    /// - [`Error::NotFinite`] or [`Error::OutOfRange`] for a position;
+    /// - [`Error::Unrepresentable`] when the backend cannot hold the tuning: in fixed
+    ///   point a `C_k` whose dead band would be wider than a position's last bit
+    ///   (`C_k < 2⁻²⁴` in `I16F16`, `2⁻³²` in `I32F32`: step less often, or use `I32F32`);
+    ///   in floats a gain that rounds to zero.
     ///
     /// ```
-    /// use stiffspring::{SpringValue, Tuning};
+    /// use stiffspring::{SpringValue, Tuning, I16F16};
     ///
-    /// let v = SpringValue::<f64, 1>::new([3.0], Tuning::rigid(), 0.001)?;
+    /// let v = SpringValue::<f64>::new([3.0], &Tuning::rigid(0.001)?)?;
     /// assert!(v.is_at_rest());
-    /// assert!(SpringValue::<f32, 1>::new([f32::NAN], Tuning::rigid(), 0.001).is_err());
+    /// assert!(SpringValue::<f32>::new([f32::NAN], &Tuning::rigid(0.001)?).is_err());
+    /// // A 0.1 Hz spring at 10 kHz: C_k = 3.9e−9 is below I16F16's resolution.
+    /// let slow = Tuning::from_frequency(0.1, 0.5, 1e-4)?;
+    /// assert!(SpringValue::<I16F16>::new([I16F16::ZERO], &slow).is_err());
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn new(position: [S; D], tuning: Tuning, dt: f64) -> Result<Self, Error> {
-        check_all(&position, Parameter::Position)?;
-        let dt = positive(dt, Parameter::TimeStep)?;
-        let coefficients = Coefficients::new(&tuning);
+    pub fn new(position: [S; D], tuning: &Tuning) -> Result<Self, Error> {
+        for p in position {
+            check_position(p, Parameter::Position)?;
+        }
         let threshold = RestThreshold::default();
         Ok(SpringValue {
-            offset: [S::ZERO; D],
-            step_velocity: [S::ZERO; D],
+            offset: [S::STATE_ZERO; D],
+            step_velocity: [S::STATE_ZERO; D],
+            gains: gains_of::<S>(tuning)?,
             target: position,
-            coefficients,
-            sampling: Sampling::new(&tuning, &coefficients, dt),
-            threshold,
-            band: RestBand::new(&threshold, &coefficients, dt),
-            dt,
+            band: RestBand::new(&threshold, tuning),
             at_rest: true,
+            start: Start::new(tuning)?,
+            threshold,
+            tuning: *tuning,
         })
     }
 
-    /// The same value with other rest thresholds.
+    /// The same value with another rest threshold.
     ///
     /// ```
     /// use stiffspring::{RestThreshold, SpringValue, Tuning};
     ///
-    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?
+    /// let v = SpringValue::<f32>::new([0.0], &Tuning::rigid(0.01)?)?
     ///     .with_rest_threshold(RestThreshold::PIXELS);
     /// assert_eq!(v.rest_threshold(), RestThreshold::PIXELS);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn with_rest_threshold(mut self, threshold: RestThreshold) -> Self {
         self.threshold = threshold;
-        self.band = RestBand::new(&threshold, &self.coefficients, self.dt);
+        self.band = RestBand::new(&threshold, &self.tuning);
         self
     }
 
-    /// Moves the target. The value keeps its position (exactly in fixed point, to a
-    /// rounding in floats) and its velocity, and springs toward the new target from
-    /// there; a value at rest wakes up unless the target did not change.
+    /// Moves the target. The value keeps its position and its velocity, and springs
+    /// toward the new target from there; a value at rest wakes up unless the target did
+    /// not change.
     ///
-    /// With raw coefficients the step velocity `u` is kept as it is. With a tuning from
-    /// the exact map the value then samples exactly the continuous spring whose target
-    /// jumped at this instant: the step velocity changes by `P·Δx` (see
-    /// [`Oscillator::start_weights`]), which also makes a value released from rest start
-    /// on the continuous trajectory instead of one step behind it.
+    /// The offset moves by exactly the change of the target (in floats, the change
+    /// rounded once), so a value far from the origin keeps its position to the bit. With
+    /// a tuning from the exact map the step velocity changes by `P·Δx` (see
+    /// [`Oscillator::start_weights`](crate::Oscillator::start_weights)): the value then
+    /// samples the continuous spring whose
+    /// target jumped at this instant, and one released from rest starts on the
+    /// continuous trajectory instead of one step behind it.
     ///
-    /// # Errors
-    ///
-    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the target, and
-    /// [`Error::OutOfRange`] when the offset `position − target` leaves
-    /// [`Scalar::SAFE_MAGNITUDE`] (in fixed point: when the value would have to cross more
-    /// than half the range); the value is then unchanged.
-    ///
-    /// [`Oscillator::start_weights`]: crate::Oscillator::start_weights
+    /// A NaN component is ignored (the whole call does nothing); a target beyond
+    /// [`Scalar::MAX`] saturates there, and an offset or a step velocity beyond the
+    /// state's range saturates at its end. [`SpringValue::try_set_target`] reports these.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
     ///
     /// let dt = 0.01;
-    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::from_frequency(2.0, 0.2, dt)?, dt)?;
-    /// v.set_target([1.0])?;
-    /// v.step();
+    /// let mut v = SpringValue::<f64>::new([0.0], &Tuning::from_frequency(2.0, 0.2, dt)?)?;
+    /// v.set_target([1.0]);
+    /// v.advance();
     /// let (p, vel) = (v.position(), v.velocity());
-    /// v.set_target([-1.0])?; // mid-flight
+    /// v.set_target([-1.0]); // mid-flight
     /// assert_eq!(v.position(), p);
     /// assert!((v.velocity()[0] - vel[0]).abs() < 1e-12);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn set_target(&mut self, target: [S; D]) -> Result<(), Error> {
-        check_all(&target, Parameter::Position)?;
-        let offset = offsets(&self.position(), &target)?;
+    pub fn set_target(&mut self, target: [S; D]) {
+        let mut t = target;
+        for v in t.iter_mut() {
+            match saturate(*v) {
+                Some(s) => *v = s,
+                None => return,
+            }
+        }
+        let (offset, velocity) = self.retargeted(&t);
+        let moved = offset != self.offset;
+        self.target = t;
+        for i in 0..D {
+            self.offset[i] = self.start.clamp(offset[i]);
+            self.step_velocity[i] = self.start.clamp(velocity[i]);
+        }
+        self.wake_if(moved);
+    }
+
+    /// [`SpringValue::set_target`], reporting instead of saturating.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the target;
+    /// [`Error::Unrepresentable`] when the offset or the step velocity leaves the state's
+    /// range. The value is then unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let mut v = SpringValue::<f32>::new([0.0], &Tuning::rigid(0.01)?)?;
+    /// assert!(v.try_set_target([f32::INFINITY]).is_err());
+    /// assert!(v.try_set_target([2.0]).is_ok());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn try_set_target(&mut self, target: [S; D]) -> Result<(), Error> {
+        for v in target {
+            check_position(v, Parameter::Position)?;
+        }
+        let (offset, velocity) = self.retargeted(&target);
+        for i in 0..D {
+            self.start.check(offset[i], Parameter::Position)?;
+            self.start.check(velocity[i], Parameter::StepVelocity)?;
+        }
+        let moved = offset != self.offset;
         self.target = target;
-        self.move_offset(offset);
+        self.offset = offset;
+        self.step_velocity = velocity;
+        self.wake_if(moved);
         Ok(())
+    }
+
+    /// The offset and step velocity after moving the target to `target`, unchecked.
+    fn retargeted(&self, target: &[S; D]) -> ([S::State; D], [S::State; D]) {
+        let mut offset = self.offset;
+        let mut velocity = self.step_velocity;
+        for i in 0..D {
+            // x + (old target − new target): exact in fixed point, one rounding in floats.
+            let delta = S::state_sub(self.target[i].widen(), target[i].widen());
+            offset[i] = S::state_add(offset[i], delta);
+            velocity[i] = self.start.shifted(velocity[i], delta);
+        }
+        (offset, velocity)
     }
 
     /// Moves the value to `position` at once (its target stays), keeping its velocity.
     ///
-    /// # Errors
-    ///
-    /// As [`SpringValue::set_target`].
+    /// NaN is ignored; out-of-range input saturates, as for [`SpringValue::set_target`].
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
     ///
-    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::rigid(), 0.01)?;
-    /// v.set_position([2.0])?;
+    /// let mut v = SpringValue::<f64>::new([0.0], &Tuning::rigid(0.01)?)?;
+    /// v.set_position([2.0]);
     /// assert_eq!((v.position(), v.target()), ([2.0], [0.0]));
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn set_position(&mut self, position: [S; D]) -> Result<(), Error> {
-        check_all(&position, Parameter::Position)?;
-        let offset = offsets(&position, &self.target)?;
-        self.move_offset(offset);
+    pub fn set_position(&mut self, position: [S; D]) {
+        let mut p = position;
+        for v in p.iter_mut() {
+            match saturate(*v) {
+                Some(s) => *v = s,
+                None => return,
+            }
+        }
+        let (offset, velocity) = self.moved_to(&p);
+        let moved = offset != self.offset;
+        for i in 0..D {
+            self.offset[i] = self.start.clamp(offset[i]);
+            self.step_velocity[i] = self.start.clamp(velocity[i]);
+        }
+        self.wake_if(moved);
+    }
+
+    /// [`SpringValue::set_position`], reporting instead of saturating.
+    ///
+    /// # Errors
+    ///
+    /// As [`SpringValue::try_set_target`]; the value is then unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let mut v = SpringValue::<f32>::new([0.0], &Tuning::rigid(0.01)?)?;
+    /// assert!(v.try_set_position([f32::NAN]).is_err());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn try_set_position(&mut self, position: [S; D]) -> Result<(), Error> {
+        for v in position {
+            check_position(v, Parameter::Position)?;
+        }
+        let (offset, velocity) = self.moved_to(&position);
+        for i in 0..D {
+            self.start.check(offset[i], Parameter::Position)?;
+            self.start.check(velocity[i], Parameter::StepVelocity)?;
+        }
+        let moved = offset != self.offset;
+        self.offset = offset;
+        self.step_velocity = velocity;
+        self.wake_if(moved);
         Ok(())
+    }
+
+    /// The offset and step velocity after a jump to `position`, unchecked.
+    fn moved_to(&self, position: &[S; D]) -> ([S::State; D], [S::State; D]) {
+        let mut offset = self.offset;
+        let mut velocity = self.step_velocity;
+        for i in 0..D {
+            let to = S::state_sub(position[i].widen(), self.target[i].widen());
+            let delta = S::state_sub(to, offset[i]);
+            offset[i] = to;
+            velocity[i] = self.start.shifted(velocity[i], delta);
+        }
+        (offset, velocity)
     }
 
     /// Gives the value a velocity (units per second), as a finger releasing a fling does.
     ///
     /// With a tuning from the exact map, the step velocity is set to `u₀ = x(0) − x(−dt)`
     /// of the continuous oscillator the tuning samples (see
-    /// [`Oscillator::start_step_velocity`]), so that every later sample lies exactly on
-    /// the continuous trajectory. Raw coefficients get `u₀ = velocity·dt`. No
+    /// [`Oscillator::start_weights`](crate::Oscillator::start_weights)), so that every
+    /// later sample lies exactly on the continuous trajectory. Raw coefficients get `u₀ = velocity·dt`. No
     /// transcendental function runs here: the weights were computed at set-up.
     ///
-    /// # Errors
-    ///
-    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the velocity, or when `u₀`
-    /// leaves the backend's range; the value is then unchanged.
-    ///
-    /// [`Oscillator::start_step_velocity`]: crate::Oscillator::start_step_velocity
+    /// NaN is ignored; a step velocity beyond the state's range saturates.
+    /// [`SpringValue::try_fling`] reports these.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
     ///
-    /// let dt = 1.0 / 120.0;
-    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::from_frequency(1.0, 0.5, dt)?, dt)?;
-    /// v.fling([2000.0])?;
-    /// v.step();
+    /// let tuning = Tuning::from_frequency(1.0, 0.5, 1.0 / 120.0)?;
+    /// let mut v = SpringValue::<f32>::new([0.0], &tuning)?;
+    /// v.fling([2000.0]);
+    /// v.advance();
     /// assert!(v.position()[0] > 15.0);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn fling(&mut self, velocity: [S; D]) -> Result<(), Error> {
-        check_all(&velocity, Parameter::Velocity)?;
-        let mut u = [S::ZERO; D];
+    pub fn fling(&mut self, velocity: [S; D]) {
+        let mut u = self.step_velocity;
         for i in 0..D {
-            u[i] = self.sampling.step_velocity(self.offset[i], velocity[i])?;
+            let Some(v) = saturate(velocity[i]) else {
+                return;
+            };
+            u[i] = self.start.clamp(self.start.step_velocity_unchecked(self.offset[i], v));
+        }
+        self.step_velocity = u;
+        self.at_rest = false;
+    }
+
+    /// [`SpringValue::fling`], reporting instead of saturating.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the velocity;
+    /// [`Error::Unrepresentable`] when the step velocity leaves the state's range (say, a
+    /// heavily overdamped spring whose exact start extrapolates one step back to a huge
+    /// offset). The value is then unchanged.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    /// let mut v = SpringValue::<f32>::new([0.0], &Tuning::rigid(0.01)?)?;
+    /// assert!(v.try_fling([f32::NAN]).is_err());
+    /// assert!(v.try_fling([10.0]).is_ok());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn try_fling(&mut self, velocity: [S; D]) -> Result<(), Error> {
+        let mut u = self.step_velocity;
+        for i in 0..D {
+            let v = check_position(velocity[i], Parameter::Velocity)?;
+            u[i] = self.start.step_velocity(self.offset[i], v)?;
         }
         self.step_velocity = u;
         self.at_rest = false;
         Ok(())
     }
 
-    /// Retunes the value; its position and velocity are kept.
+    /// Retunes the value (a new spring, a new time step, or both); its position and
+    /// velocity are kept.
     ///
     /// # Errors
     ///
-    /// [`Error::OutOfRange`] for the velocity when the new tuning would need a step
-    /// velocity outside the backend's range; the value is then unchanged.
+    /// As [`SpringValue::new`] for the tuning, and [`Error::Unrepresentable`] when the
+    /// velocity needs a step velocity beyond the state's range at the new tuning. The
+    /// value is then unchanged.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
     ///
-    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
-    /// v.set_tuning(Tuning::from_coefficients(0.1, 0.2)?)?;
+    /// let t60 = Tuning::from_frequency(2.0, 0.5, 1.0 / 60.0)?;
+    /// let mut v = SpringValue::<f64>::new([0.0], &t60)?;
+    /// v.set_target([1.0]);
+    /// v.advance();
+    /// let (p, vel) = (v.position(), v.velocity());
+    /// v.set_tuning(&t60.with_dt(1.0 / 120.0)?)?; // the display switched to 120 Hz
+    /// assert_eq!(v.position(), p);
+    /// assert!((v.velocity()[0] - vel[0]).abs() < 1e-12);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn set_tuning(&mut self, tuning: Tuning) -> Result<(), Error> {
-        self.resample(tuning, self.dt)
-    }
-
-    /// Changes the time step, for a display that switches between 60 and 120 Hz.
-    ///
-    /// Position and velocity (in units per second) are kept. If the tuning samples a
-    /// continuous oscillator ([`Tuning::samples_oscillator`]), the coefficients are
-    /// recomputed so that the same oscillator is sampled at the new rate; raw coefficients
-    /// are kept, which the article says keeps the same behaviour per step.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`, an error of the exact map
-    /// at the new rate ([`Error::Aliased`]), or [`Error::OutOfRange`] for the velocity;
-    /// the value is then unchanged.
-    ///
-    /// ```
-    /// use stiffspring::{SpringValue, Tuning};
-    ///
-    /// let dt = 1.0 / 60.0;
-    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::from_frequency(2.0, 0.5, dt)?, dt)?;
-    /// v.set_dt(1.0 / 120.0)?;
-    /// let f = v.tuning().oscillator(1.0 / 120.0)?.frequency();
-    /// assert!((f - 2.0).abs() < 1e-9);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn set_dt(&mut self, dt: f64) -> Result<(), Error> {
-        let dt = positive(dt, Parameter::TimeStep)?;
-        let tuning = self.tuning();
-        #[cfg(feature = "libm")]
-        if tuning.samples_oscillator() {
-            let resampled = tuning.oscillator(self.dt)?.tuning(dt)?;
-            return self.resample(resampled, dt);
-        }
-        self.resample(tuning, dt)
-    }
-
-    /// Installs `tuning` at `dt`, keeping position and velocity: the velocity is read
-    /// through the old sampling weights and written through the new ones.
-    fn resample(&mut self, tuning: Tuning, dt: f64) -> Result<(), Error> {
-        let velocity = self.velocity();
-        let coefficients = Coefficients::new(&tuning);
-        let sampling = Sampling::new(&tuning, &coefficients, dt);
-        let mut u = [S::ZERO; D];
+    pub fn set_tuning(&mut self, tuning: &Tuning) -> Result<(), Error> {
+        let gains = gains_of::<S>(tuning)?;
+        let start = Start::<S>::new(tuning)?;
+        let mut u = self.step_velocity;
         for i in 0..D {
-            u[i] = sampling.step_velocity(self.offset[i], velocity[i])?;
+            let v = self.start.velocity(self.offset[i], self.step_velocity[i]);
+            u[i] = start.step_velocity(self.offset[i], v)?;
         }
+        self.gains = gains;
+        self.start = start;
         self.step_velocity = u;
-        self.coefficients = coefficients;
-        self.sampling = sampling;
-        self.dt = dt;
-        self.band = RestBand::new(&self.threshold, &coefficients, dt);
+        self.tuning = *tuning;
+        self.band = RestBand::new(&self.threshold, tuning);
         Ok(())
     }
 
-    /// Advances the value by one time step. Does nothing when the value is at rest.
+    /// Advances the value by one time step and reports what happened: it settles (snaps
+    /// exactly onto its target, then costs nothing) when the motion it has left is inside
+    /// its [`RestThreshold`].
     ///
     /// ```
-    /// use stiffspring::{SpringValue, Tuning};
+    /// use stiffspring::{Motion, SpringValue, Tuning};
     ///
-    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::from_coefficients(0.5, 0.5)?, 0.01)?;
-    /// v.set_target([1.0])?;
-    /// v.step();
+    /// let mut v = SpringValue::<f32>::new([0.0], &Tuning::from_coefficients(0.5, 0.5, 0.01)?)?;
+    /// v.set_target([1.0]);
+    /// assert_eq!(v.step(), Motion::Moving);
     /// assert_eq!(v.position(), [0.5]);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     #[inline]
-    pub fn step(&mut self) {
+    pub fn step(&mut self) -> Motion {
         if self.at_rest {
-            return;
+            return Motion::Resting;
         }
         let mut inside = true;
         for i in 0..D {
-            inside &= advance(
-                &mut self.offset[i],
-                &mut self.step_velocity[i],
-                &self.coefficients,
-                &self.band,
-            );
+            S::advance(&self.gains, &mut self.offset[i], &mut self.step_velocity[i]);
+            inside &= self.band.contains(self.offset[i], self.step_velocity[i]);
         }
         if inside {
             self.settle();
+            Motion::Settled
+        } else {
+            Motion::Moving
         }
+    }
+
+    /// Advances the value by one time step and nothing else: no rest test, no flag. The
+    /// cheapest step, for a loop that runs the spring continuously (a haptic output) or
+    /// tests rest itself. A value advanced this way never settles; [`SpringValue::step`]
+    /// afterwards picks up where it is.
+    ///
+    /// ```
+    /// use stiffspring::{SpringValue, Tuning};
+    ///
+    /// let mut v = SpringValue::<f32>::new([0.0], &Tuning::from_coefficients(0.5, 0.5, 0.01)?)?;
+    /// v.set_target([1.0]);
+    /// v.advance();
+    /// assert_eq!(v.position(), [0.5]);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    #[inline]
+    pub fn advance(&mut self) {
+        for i in 0..D {
+            S::advance(&self.gains, &mut self.offset[i], &mut self.step_velocity[i]);
+        }
+        self.at_rest = false;
     }
 
     /// The current position.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
-    /// let v = SpringValue::<f32, 3>::new([1.0, 2.0, 3.0], Tuning::rigid(), 0.01)?;
+    /// let v = SpringValue::<f32, 3>::new([1.0, 2.0, 3.0], &Tuning::rigid(0.01)?)?;
     /// assert_eq!(v.position(), [1.0, 2.0, 3.0]);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn position(&self) -> [S; D] {
         let mut p = self.target;
         for (p, x) in p.iter_mut().zip(self.offset.iter()) {
-            *p = p.add(*x);
+            *p = p.add(S::narrow(*x));
         }
         p
     }
@@ -406,7 +493,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
-    /// let v = SpringValue::<f32, 1>::new([4.0], Tuning::rigid(), 0.01)?;
+    /// let v = SpringValue::<f32>::new([4.0], &Tuning::rigid(0.01)?)?;
     /// assert_eq!(v.target(), [4.0]);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
@@ -418,85 +505,76 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
-    /// let mut v = SpringValue::<f32, 1>::new([4.0], Tuning::rigid(), 0.01)?;
-    /// v.set_target([1.0])?;
+    /// let mut v = SpringValue::<f32>::new([4.0], &Tuning::rigid(0.01)?)?;
+    /// v.set_target([1.0]);
     /// assert_eq!(v.offset(), [3.0]);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn offset(&self) -> [S; D] {
-        self.offset
+        self.offset.map(S::narrow)
     }
 
-    /// The step velocity `u = v·dt`: the distance moved in the last step.
+    /// The step velocity `u = x_n − x_{n−1}`: the distance moved in the last step (rounded
+    /// to a position in fixed point, whose state keeps more bits). A spring with `C_d = 1`
+    /// keeps no velocity from one step to the next, and reads 0 here.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
-    /// let v = SpringValue::<f32, 1>::new([4.0], Tuning::rigid(), 0.01)?;
+    /// let v = SpringValue::<f32>::new([4.0], &Tuning::rigid(0.01)?)?;
     /// assert_eq!(v.step_velocity(), [0.0]);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn step_velocity(&self) -> [S; D] {
         self.step_velocity
+            .map(|v| S::narrow(self.start.step_velocity_of(v)))
     }
 
     /// The velocity in units per second.
     ///
     /// For a tuning from the exact map it is the velocity of the continuous trajectory
-    /// the value samples, exactly (see [`SpringValue::fling`], whose inverse it is); for
-    /// raw coefficients the backward difference `u/dt`.
+    /// the value samples (see [`SpringValue::fling`], whose inverse it is); for raw
+    /// coefficients the backward difference `u/dt`.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
     ///
-    /// let mut v = SpringValue::<f64, 1>::new([0.0], Tuning::rigid(), 0.5)?;
-    /// v.set_target([1.0])?;
-    /// v.step();
-    /// assert_eq!(v.velocity(), [2.0]);
+    /// let mut v = SpringValue::<f64>::new([0.0], &Tuning::from_coefficients(0.5, 0.5, 0.5)?)?;
+    /// v.set_target([1.0]);
+    /// v.advance(); // moves by 0.5 in 0.5 s
+    /// assert_eq!(v.velocity(), [1.0]);
     ///
     /// let dt = 0.01;
-    /// let mut w = SpringValue::<f64, 1>::new([0.0], Tuning::from_frequency(1.0, 0.1, dt)?, dt)?;
-    /// w.fling([3.0])?;
+    /// let mut w = SpringValue::<f64>::new([0.0], &Tuning::from_frequency(1.0, 0.1, dt)?)?;
+    /// w.fling([3.0]);
     /// assert!((w.velocity()[0] - 3.0).abs() < 1e-12);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn velocity(&self) -> [S; D] {
         let mut v = [S::ZERO; D];
-        for ((v, x), u) in v.iter_mut().zip(&self.offset).zip(&self.step_velocity) {
-            *v = self.sampling.velocity(*x, *u);
+        for (v, (x, u)) in v.iter_mut().zip(self.offset.iter().zip(&self.step_velocity)) {
+            *v = self.start.velocity(*x, *u);
         }
         v
     }
 
-    /// The time step, in seconds.
+    /// The tuning in effect, as given (its `dt` is the value's time step).
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
-    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
-    /// assert_eq!(v.dt(), 0.01);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn dt(&self) -> f64 {
-        self.dt
-    }
-
-    /// The tuning in effect, after rounding to the backend's coefficient format.
-    ///
-    /// ```
-    /// use stiffspring::{SpringValue, Tuning};
-    /// let v = SpringValue::<f64, 1>::new([0.0], Tuning::rigid(), 0.01)?;
-    /// assert_eq!(v.tuning(), Tuning::rigid());
+    /// let t = Tuning::rigid(0.01)?;
+    /// let v = SpringValue::<f64>::new([0.0], &t)?;
+    /// assert_eq!(v.tuning(), t);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn tuning(&self) -> Tuning {
-        let t = self.coefficients.tuning();
-        Tuning::from_parts(t.stiffness(), t.retention(), self.sampling.is_continuous())
+        self.tuning
     }
 
-    /// The rest thresholds as given by the user.
+    /// The rest threshold.
     ///
     /// ```
     /// use stiffspring::{RestThreshold, SpringValue, Tuning};
-    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
+    /// let v = SpringValue::<f32>::new([0.0], &Tuning::rigid(0.01)?)?;
     /// assert_eq!(v.rest_threshold(), RestThreshold::default());
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
@@ -504,32 +582,15 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         self.threshold
     }
 
-    /// The offset below which the value snaps to its target when it is slow enough: the
-    /// position threshold, widened in fixed point to cover the dead band
-    /// `1/C_k` LSB in which the rounded spring stops moving.
-    ///
-    /// ```
-    /// use stiffspring::{RestThreshold, SpringValue, Tuning};
-    ///
-    /// let v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?
-    ///     .with_rest_threshold(RestThreshold::new(0.5, 1.0)?);
-    /// assert_eq!(v.rest_offset(), 0.5);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn rest_offset(&self) -> S {
-        self.band.offset
-    }
-
     /// True when the value sits exactly on its target with zero velocity, and stepping it
     /// costs nothing.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
-    /// let mut v = SpringValue::<f32, 1>::new([0.0], Tuning::rigid(), 0.01)?;
-    /// v.set_target([1.0])?;
+    /// let mut v = SpringValue::<f32>::new([0.0], &Tuning::rigid(0.01)?)?;
+    /// v.set_target([1.0]);
     /// assert!(!v.is_at_rest());
-    /// v.step();
-    /// v.step();
+    /// let _ = (v.step(), v.step());
     /// assert!(v.is_at_rest());
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
@@ -539,32 +600,13 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
 
     /// Snaps exactly onto the target: at rest, stepping costs nothing until moved.
     fn settle(&mut self) {
-        // Zeroed element by element, with the flag in between: two whole-array stores
-        // of zero merge into one memset in `f64`, and a memset stops the compiler from
-        // keeping the state in registers across a caller's loop of steps (every step
-        // then pays a store-to-load round trip through memory).
-        for x in self.offset.iter_mut() {
-            *x = S::ZERO;
-        }
+        self.offset = [S::STATE_ZERO; D];
+        self.step_velocity = [S::STATE_ZERO; D];
         self.at_rest = true;
-        for u in self.step_velocity.iter_mut() {
-            *u = S::ZERO;
-        }
     }
 
-    /// Jumps the offset to `offset` with the velocity kept (`u += P·Δx`). A value at rest
-    /// stays at rest only if nothing moved; anything else wakes it and the next step
-    /// decides.
-    fn move_offset(&mut self, offset: [S; D]) {
-        let mut moved = false;
-        for ((x, u), to) in self
-            .offset
-            .iter_mut()
-            .zip(&mut self.step_velocity)
-            .zip(offset)
-        {
-            moved |= jump(x, u, &self.sampling, to);
-        }
+    /// A value at rest stays at rest only if nothing moved.
+    fn wake_if(&mut self, moved: bool) {
         self.at_rest &= !moved;
     }
 }

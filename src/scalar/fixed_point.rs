@@ -1,35 +1,56 @@
-//! `I16F16` and `I32F32`: saturating fixed point with high-precision coefficients.
+//! `I16F16` and `I32F32`: saturating fixed point with a wide internal state.
 //!
-//! | backend  | position   | coefficient | product        |
-//! |----------|------------|-------------|----------------|
-//! | `I16F16` | `i32`, Q16.16 | `I3F29` (`i32`) | `i64`, exact |
-//! | `I32F32` | `i64`, Q32.32 | `I3F61` (`i64`) | `i128`, exact |
+//! | backend | position | state | gains, factors | fractions (`Coef`) |
+//! |---|---|---|---|---|
+//! | `I16F16` | Q16.16 (`i32`) | Q24.40 (`i64`) | 30-bit mantissa, shift | `I3F29` |
+//! | `I32F32` | Q32.32 (`i64`) | Q64.64 (`i128`) | 62-bit mantissa, shift | `I3F61` |
 //!
-//! Three integer bits in the coefficient cover `C_k < 4`, the top of the single-spring
-//! stability region (`C_k + 2·C_d < 4`), and `1 − C_d ∈ (−1, 1]`. The difference of two
-//! products cannot overflow the double-width integer: each factor is at most `2³¹`
-//! (resp. `2⁶³`) in magnitude, so each product is at most `2⁶²` (resp. `2¹²⁶`), and the
-//! two extremes cannot both be reached with opposite signs because the positive end of
-//! each signed format is one LSB short of the negative end.
+//! The state keeps 24 (resp. 32) bits below a position's last bit and 8 (resp. 32) bits
+//! of range above its top, so that a fling whose exact start needs a step velocity beyond
+//! the position range (a heavily overdamped spring extrapolated one step back) still
+//! fits. Positions are read by rounding the state to nearest and saturating.
 //!
-//! The `fixed` crate provides the types, the conversions and the saturating add, but its
-//! products round toward −∞ (which leaves limit cycles) and it has no "sum of two products, rounded once". The
-//! products here are therefore taken on the raw bits, with the rounding chosen in the
-//! [parent module](super).
+//! The `fixed` crate provides the types, the conversions and the saturating add; the
+//! products are taken on the raw bits, with the rounding chosen in the parent module.
 
+use super::wide::{broad, narrow};
 use super::{Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
-/// Rounds `p / 2^SHIFT` toward zero and saturates to the narrow type.
+/// The gains `(C_k, C_d)` of a spring in a fixed-point backend: each a mantissa and an
+/// exponent, `C = mantissa / 2^shift`.
 ///
-/// The arithmetic shift floors; adding `2^SHIFT − 1` to a negative `p` first (the mask is
-/// all ones exactly when `p < 0`) turns that into truncation toward zero on both sides.
+/// ```
+/// use stiffspring::{I16F16, Scalar};
+/// let g = I16F16::gains(3.9e-7, 1.26e-4).unwrap();
+/// let (k, d) = I16F16::gains_to_f64(&g);
+/// assert!((k / 3.9e-7 - 1.0).abs() < 1e-6 && (d / 1.26e-4 - 1.0).abs() < 1e-8);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FixedGains<M> {
+    pub(crate) stiffness: FixedFactor<M>,
+    pub(crate) damping: FixedFactor<M>,
+}
+
+/// A factor of any magnitude in a fixed-point backend: `mantissa / 2^shift`.
 ///
-/// The range test works on the two halves of `r`: it fits the narrow type exactly when
-/// its high half is the sign extension of its low half, and the saturated value,
-/// `MAX` or `MIN` by the sign of the high half, is `(high >> (N − 1)) ^ MAX`. On a
-/// 32-bit core this is a compare and two conditional instructions, where the two
-/// double-width comparisons against `MAX` and `MIN` took a dozen.
+/// ```
+/// use stiffspring::{I16F16, Scalar};
+/// let f = I16F16::factor(1e-4);
+/// let one = I16F16::from_num(1).widen();
+/// let scaled = I16F16::scale(one, f);
+/// assert!((I16F16::state_to_f64(scaled) - 1e-4).abs() < 1e-11);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FixedFactor<M> {
+    pub(crate) mantissa: M,
+    pub(crate) shift: i32,
+}
+
+/// Rounds `p / 2^SHIFT` toward zero and saturates to the narrow type: the products of a
+/// position and a fraction (`Coef`).
 macro_rules! narrow_fn {
     ($name:ident, $Wide:ty, $WideU:ty, $Narrow:ty, $SHIFT:expr) => {
         #[inline(always)]
@@ -54,18 +75,30 @@ narrow_fn!(narrow_q16, i64, u64, i32, 16);
 narrow_fn!(narrow_q32, i128, u128, i64, 32);
 
 macro_rules! fixed_backend {
-    ($S:ty, $Coef:ty, $Wide:ty, $narrow:ident, $narrow_self:ident, $name:literal) => {
+    (
+        $S:ty, $Bits:ty, $State:ty, $StateU:ty, $Half:ty, $Coef:ty, $Wide:ty,
+        $arith:ident, $narrow:ident, $narrow_self:ident, $guard:expr, $name:literal
+    ) => {
         impl Sealed for $S {}
 
         impl Scalar for $S {
+            type State = $State;
+            type Gains = FixedGains<$Half>;
+            type Factor = FixedFactor<$Half>;
             type Coef = $Coef;
 
             const ZERO: Self = <$S>::ZERO;
             const ONE: Self = <$S>::ONE;
+            const STATE_ZERO: $State = 0;
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 1.0 / (1u64 << <$S>::FRAC_NBITS) as f64;
-            const NETWORK_MAGNITUDE: f64 = Self::SAFE_MAGNITUDE;
-            const SAFE_MAGNITUDE: f64 = (1u64 << <$S>::INT_NBITS - 1) as f64;
+            const MAX: f64 = (1u64 << (<$S>::INT_NBITS - 1)) as f64;
+            const STATE_MAX: f64 = {
+                // 2^(state integer bits − 1), written out: the state has
+                // FRAC_NBITS + GUARD fractional bits.
+                let int_bits = <$State>::BITS - <$S>::FRAC_NBITS - $guard;
+                f64::from_bits(((1023 + int_bits - 1) as u64) << 52)
+            };
 
             #[inline]
             fn from_f64(value: f64) -> Self {
@@ -80,6 +113,82 @@ macro_rules! fixed_backend {
             fn to_f64(self) -> f64 {
                 self.to_num::<f64>()
             }
+            fn gains(stiffness: f64, damping: f64) -> Option<Self::Gains> {
+                // One last bit of the state, in positions' units.
+                let state_lsb = Self::RESOLUTION / (1u64 << $guard) as f64;
+                // The spring stops for good within |x| < 1/C_k last bits of the state:
+                // below C_k = 2^−guard that dead band is wider than a position's last bit.
+                if stiffness != 0.0 && stiffness.abs() < state_lsb / Self::RESOLUTION {
+                    return None;
+                }
+                let (k, d) = (Self::factor(stiffness), Self::factor(damping));
+                if (stiffness != 0.0 && k.mantissa == 0) || (damping != 0.0 && d.mantissa == 0) {
+                    return None;
+                }
+                Some(FixedGains {
+                    stiffness: k,
+                    damping: d,
+                })
+            }
+            fn gains_to_f64(gains: &Self::Gains) -> (f64, f64) {
+                (
+                    $arith::decode(gains.stiffness.mantissa, gains.stiffness.shift),
+                    $arith::decode(gains.damping.mantissa, gains.damping.shift),
+                )
+            }
+            fn factor(value: f64) -> Self::Factor {
+                let (mantissa, shift) = $arith::encode(value);
+                FixedFactor { mantissa, shift }
+            }
+            #[inline(always)]
+            fn widen(self) -> $State {
+                (self.to_bits() as $State) << $guard
+            }
+            #[inline(always)]
+            fn narrow(state: $State) -> Self {
+                // Round to nearest (ties up), then saturate to the position's range.
+                let r = state.saturating_add(1 << ($guard - 1)) >> $guard;
+                <$S>::from_bits(r.clamp(<$Bits>::MIN as $State, <$Bits>::MAX as $State) as $Bits)
+            }
+            fn state_from_f64(value: f64) -> $State {
+                if value.is_nan() {
+                    return 0;
+                }
+                let scaled = value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64
+                    * 4_294_967_296.0;
+                // `as` saturates at the ends of the integer type.
+                let r = if scaled >= 0.0 { scaled + 0.5 } else { scaled - 0.5 };
+                r as $State
+            }
+            fn state_to_f64(state: $State) -> f64 {
+                state as f64 / (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64 / 4_294_967_296.0
+            }
+            #[inline(always)]
+            fn advance(gains: &Self::Gains, x: &mut $State, v: &mut $State) {
+                let k = gains.stiffness;
+                let d = gains.damping;
+                let u = v.saturating_sub($arith::mul_shift::<false>(*x, k.mantissa, k.shift));
+                *x = x.saturating_add(u);
+                *v = u.saturating_sub($arith::mul_shift::<true>(u, d.mantissa, d.shift));
+            }
+            #[inline(always)]
+            fn state_add(a: $State, b: $State) -> $State {
+                a.saturating_add(b)
+            }
+            #[inline(always)]
+            fn state_sub(a: $State, b: $State) -> $State {
+                a.saturating_sub(b)
+            }
+            #[inline(always)]
+            fn scale(state: $State, factor: Self::Factor) -> $State {
+                $arith::mul_shift::<false>(state, factor.mantissa, factor.shift)
+            }
+            #[inline(always)]
+            fn within(state: $State, bound: $State) -> bool {
+                // −b ≤ x ≤ b ⟺ 0 ≤ x + b ≤ 2b, one unsigned comparison; the bound is at
+                // most STATE_MAX/2 by construction, so 2b does not overflow.
+                (state.wrapping_add(bound) as $StateU) <= (bound as $StateU).wrapping_mul(2)
+            }
             #[inline]
             fn coef(value: f64) -> Self::Coef {
                 // `saturating_from_num` panics on NaN; the library never does.
@@ -92,10 +201,6 @@ macro_rules! fixed_backend {
             #[inline]
             fn coef_to_f64(coef: Self::Coef) -> f64 {
                 coef.to_num::<f64>()
-            }
-            #[inline]
-            fn is_valid(self) -> bool {
-                true
             }
             #[inline(always)]
             fn add(self, rhs: Self) -> Self {
@@ -114,6 +219,10 @@ macro_rules! fixed_backend {
                 self.saturating_abs()
             }
             #[inline(always)]
+            fn mul(self, rhs: Self) -> Self {
+                <$S>::from_bits($narrow_self(self.to_bits() as $Wide * rhs.to_bits() as $Wide))
+            }
+            #[inline(always)]
             fn mul_coef(self, coef: Self::Coef) -> Self {
                 <$S>::from_bits($narrow(self.to_bits() as $Wide * coef.to_bits() as $Wide))
             }
@@ -122,16 +231,6 @@ macro_rules! fixed_backend {
                 let p = a.to_bits() as $Wide * ca.to_bits() as $Wide
                     - b.to_bits() as $Wide * cb.to_bits() as $Wide;
                 <$S>::from_bits($narrow(p))
-            }
-            #[inline(always)]
-            fn mul(self, rhs: Self) -> Self {
-                <$S>::from_bits($narrow_self(
-                    self.to_bits() as $Wide * rhs.to_bits() as $Wide,
-                ))
-            }
-            #[inline(always)]
-            fn clamp_magnitude(self, _bound: Self) -> Self {
-                self
             }
             #[inline(always)]
             fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self {
@@ -147,75 +246,66 @@ macro_rules! fixed_backend {
     };
 }
 
-fixed_backend!(I16F16, I3F29, i64, narrow_q29, narrow_q16, "I16F16");
-fixed_backend!(I32F32, I3F61, i128, narrow_q61, narrow_q32, "I32F32");
+fixed_backend!(I16F16, i32, i64, u64, i32, I3F29, i64, narrow, narrow_q29, narrow_q16, 24, "I16F16");
+fixed_backend!(I32F32, i64, i128, u128, i64, I3F61, i128, broad, narrow_q61, narrow_q32, 32, "I32F32");
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
+    fn state_has_guard_bits_and_headroom() {
+        assert_eq!(I16F16::STATE_MAX, 8_388_608.0); // 2^23 units
+        assert_eq!(I32F32::STATE_MAX, 9_223_372_036_854_775_808.0); // 2^63 units
+        let lsb = I16F16::from_bits(1).widen();
+        assert_eq!(lsb, 1 << 24);
+        assert_eq!(I16F16::narrow(lsb / 2), I16F16::from_bits(1)); // ties up
+        assert_eq!(I16F16::narrow(lsb / 2 - 1), I16F16::ZERO);
+        assert_eq!(I16F16::narrow(i64::MAX), I16F16::MAX);
+        assert_eq!(I16F16::narrow(i64::MIN), I16F16::MIN);
+        assert_eq!(I32F32::narrow(i128::MIN), I32F32::MIN);
+        assert_eq!(I16F16::state_to_f64(I16F16::state_from_f64(-1234.5)), -1234.5);
+        assert_eq!(I32F32::state_to_f64(I32F32::state_from_f64(1e9)), 1e9);
+    }
+
+    #[test]
+    fn a_step_rounds_the_spring_toward_zero_and_the_damping_away() {
+        // C_k = 0.5, C_d = 0.5 from x = 3 state LSB, ũ = 0: the spring term 1.5 truncates
+        // to 1 (u = −1, x = 2), the damping term 0.5 rounds away to 1 (ũ = 0).
+        let g = I16F16::gains(0.5, 0.5).unwrap();
+        let (mut x, mut v) = (3i64, 0i64);
+        I16F16::advance(&g, &mut x, &mut v);
+        assert_eq!((x, v), (2, 0));
+        let (mut x, mut v) = (-3i64, 0i64);
+        I16F16::advance(&g, &mut x, &mut v);
+        assert_eq!((x, v), (-2, 0));
+        let g = I32F32::gains(0.5, 0.5).unwrap();
+        let (mut x, mut v) = (-3i128, 0i128);
+        I32F32::advance(&g, &mut x, &mut v);
+        assert_eq!((x, v), (-2, 0));
+    }
+
+    #[test]
+    fn gains_below_the_state_resolution_are_refused() {
+        assert!(I16F16::gains(1e-8, 0.1).is_none()); // C_k < 2^−24
+        assert!(I16F16::gains(1e-7, 0.1).is_some());
+        assert!(I32F32::gains(1e-10, 0.1).is_none()); // C_k < 2^−32
+        assert!(I32F32::gains(1e-9, 0.1).is_some());
+        assert!(I16F16::gains(0.0, 0.0).is_some());
+    }
+
+    #[test]
     fn products_of_positions_truncate_and_saturate() {
         let a = I16F16::from_num(1.5);
         let b = I16F16::from_num(-2.25);
         assert_eq!(a.mul(b), I16F16::from_num(-3.375));
-        // −1 LSB · 0.5 = −0.5 LSB truncates to 0, not to −1.
-        assert_eq!(
-            I16F16::from_bits(-1).mul(I16F16::from_num(0.5)),
-            I16F16::ZERO
-        );
+        assert_eq!(I16F16::from_bits(-1).mul(I16F16::from_num(0.5)), I16F16::ZERO);
         assert_eq!(I16F16::MAX.mul(I16F16::MAX), I16F16::MAX);
-        assert_eq!(I16F16::MIN.mul(I16F16::MAX), I16F16::MIN);
         let d = [I16F16::from_num(3), I16F16::from_num(4)];
         assert_eq!(I16F16::dot(&d, &d), I16F16::from_num(25));
-        let big = [I16F16::MAX; 3];
-        assert_eq!(I16F16::dot(&big, &big), I16F16::MAX);
-        let d = [I32F32::from_num(-3), I32F32::from_num(4)];
-        assert_eq!(I32F32::dot(&d, &d), I32F32::from_num(25));
         assert_eq!(I32F32::MIN.mul(I32F32::MIN), I32F32::MAX);
-    }
-
-    #[test]
-    fn narrowing_truncates_toward_zero() {
-        let one = 1i64 << 29;
-        assert_eq!(narrow_q29(one - 1), 0);
-        assert_eq!(narrow_q29(-one + 1), 0);
-        assert_eq!(narrow_q29(one), 1);
-        assert_eq!(narrow_q29(-one), -1);
-        assert_eq!(narrow_q29(5 * one + 1), 5);
-        assert_eq!(narrow_q29(-5 * one - 1), -5);
-        assert_eq!(narrow_q29(-5 * one + 1), -4);
-        assert_eq!(narrow_q29(i64::MAX / 2), i32::MAX);
-        assert_eq!(narrow_q29(i64::MIN / 2), i32::MIN);
-        assert_eq!(narrow_q61((3i128 << 61) - 1), 2);
+        assert_eq!(narrow_q29((1i64 << 29) - 1), 0);
+        assert_eq!(narrow_q29(-(1i64 << 29) + 1), 0);
         assert_eq!(narrow_q61(-(3i128 << 61) + 1), -2);
-    }
-
-    #[test]
-    fn extreme_products_saturate_instead_of_wrapping() {
-        // The corners of both formats: every sign combination of the extreme factors,
-        // against exact i128 arithmetic, whose `/` truncates toward zero.
-        let expected_q29 = |p: i128| (p / (1 << 29)).clamp(i32::MIN as i128, i32::MAX as i128);
-        for c in [I3F29::MIN, I3F29::MAX] {
-            for d in [I3F29::MIN, I3F29::MAX] {
-                for a in [I16F16::MIN, I16F16::MAX] {
-                    for b in [I16F16::MIN, I16F16::MAX] {
-                        let p = a.to_bits() as i128 * c.to_bits() as i128
-                            - b.to_bits() as i128 * d.to_bits() as i128;
-                        let got = I16F16::mul_coef_diff(a, c, b, d).to_bits() as i128;
-                        assert_eq!(got, expected_q29(p));
-                    }
-                }
-            }
-        }
-        for c in [I3F61::MIN, I3F61::MAX] {
-            for a in [I32F32::MIN, I32F32::MAX] {
-                let p = a.to_bits() as i128 * c.to_bits() as i128;
-                let expected = (p / (1 << 61)).clamp(i64::MIN as i128, i64::MAX as i128);
-                assert_eq!(a.mul_coef(c).to_bits() as i128, expected);
-            }
-        }
-        assert_eq!(I16F16::coef(-9.0), I3F29::MIN);
-        assert_eq!(I16F16::coef(9.0), I3F29::MAX);
     }
 }

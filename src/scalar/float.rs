@@ -1,25 +1,39 @@
-//! `f32` and `f64`: plain IEEE arithmetic, coefficients in the same format.
+//! `f32` and `f64`: plain IEEE arithmetic; the state and the gains in the same format.
 
 use super::{Scalar, Sealed};
 
+/// The gains `(C_k, C_d)` of a spring in a float backend.
+///
+/// ```
+/// use stiffspring::Scalar;
+/// let g = f32::gains(0.5, 0.25).unwrap();
+/// assert_eq!(f32::gains_to_f64(&g), (0.5, 0.25));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FloatGains<F> {
+    pub(crate) stiffness: F,
+    pub(crate) damping: F,
+}
+
 macro_rules! float_backend {
-    ($F:ty, $name:literal, $safe_exponent:literal, $network_exponent:literal) => {
+    ($F:ty, $name:literal, $max_exponent:literal, $state_exponent:literal, $min_gain:expr) => {
         impl Sealed for $F {}
 
         impl Scalar for $F {
+            type State = $F;
+            type Gains = FloatGains<$F>;
+            type Factor = $F;
             type Coef = $F;
 
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
+            const STATE_ZERO: Self = 0.0;
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 0.0;
-            // 2^e, written out because `powi` is not in `core`: the headroom below
-            // `MAX` absorbs the transient growth of any stable 2×2 map (see `SAFE_MAGNITUDE`).
-            const SAFE_MAGNITUDE: f64 = f64::from_bits(((1023 + $safe_exponent) as u64) << 52);
-            // Σ dᵢ² of three separations up to 2·bound must stay below MAX:
-            // 3·(2^(e+1))² < 2^(2e+4) ≤ 2^127 (f32) or 2^1023 (f64).
-            const NETWORK_MAGNITUDE: f64 =
-                f64::from_bits(((1023 + $network_exponent) as u64) << 52);
+            // 2^e, written out because `powi` is not in `core`.
+            const MAX: f64 = f64::from_bits(((1023 + $max_exponent) as u64) << 52);
+            const STATE_MAX: f64 = f64::from_bits(((1023 + $state_exponent) as u64) << 52);
 
             #[inline]
             fn from_f64(value: f64) -> Self {
@@ -35,17 +49,73 @@ macro_rules! float_backend {
                 self as f64
             }
             #[inline]
+            fn gains(stiffness: f64, damping: f64) -> Option<Self::Gains> {
+                let (k, d) = (Self::from_f64(stiffness), Self::from_f64(damping));
+                // A gain that becomes subnormal loses its relative precision, one that
+                // becomes zero its effect: neither is the tuning that was asked for.
+                let lost = |c: f64, g: $F| c != 0.0 && g.abs() < $min_gain;
+                if lost(stiffness, k) || lost(damping, d) {
+                    None
+                } else {
+                    Some(FloatGains {
+                        stiffness: k,
+                        damping: d,
+                    })
+                }
+            }
+            #[inline]
+            fn gains_to_f64(gains: &Self::Gains) -> (f64, f64) {
+                (gains.stiffness as f64, gains.damping as f64)
+            }
+            #[inline]
+            fn factor(value: f64) -> Self::Factor {
+                Self::from_f64(value)
+            }
+            #[inline(always)]
+            fn widen(self) -> Self::State {
+                self
+            }
+            #[inline(always)]
+            fn narrow(state: Self::State) -> Self {
+                state
+            }
+            #[inline]
+            fn state_from_f64(value: f64) -> Self::State {
+                Self::from_f64(value)
+            }
+            #[inline]
+            fn state_to_f64(state: Self::State) -> f64 {
+                state as f64
+            }
+            #[inline(always)]
+            fn advance(gains: &Self::Gains, x: &mut Self, v: &mut Self) {
+                let u = *v - gains.stiffness * *x;
+                *x += u;
+                *v = u - gains.damping * u;
+            }
+            #[inline(always)]
+            fn state_add(a: Self, b: Self) -> Self {
+                a + b
+            }
+            #[inline(always)]
+            fn state_sub(a: Self, b: Self) -> Self {
+                a - b
+            }
+            #[inline(always)]
+            fn scale(state: Self, factor: Self) -> Self {
+                state * factor
+            }
+            #[inline(always)]
+            fn within(state: Self, bound: Self) -> bool {
+                state.abs() <= bound
+            }
+            #[inline]
             fn coef(value: f64) -> Self::Coef {
                 Self::from_f64(value)
             }
             #[inline]
             fn coef_to_f64(coef: Self::Coef) -> f64 {
                 coef as f64
-            }
-            #[inline]
-            fn is_valid(self) -> bool {
-                // NaN fails the comparison, infinities exceed the bound.
-                (self as f64).abs() <= Self::SAFE_MAGNITUDE
             }
             #[inline(always)]
             fn add(self, rhs: Self) -> Self {
@@ -65,29 +135,16 @@ macro_rules! float_backend {
                 <$F>::abs(self)
             }
             #[inline(always)]
-            fn mul_coef(self, coef: Self::Coef) -> Self {
-                self * coef
-            }
-            #[inline(always)]
-            fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self {
-                a * ca - b * cb
-            }
-            #[inline(always)]
             fn mul(self, rhs: Self) -> Self {
                 self * rhs
             }
             #[inline(always)]
-            fn clamp_magnitude(self, bound: Self) -> Self {
-                // Written so that NaN fails every comparison and lands on 0.
-                if self.abs() <= bound {
-                    self
-                } else if self > 0.0 {
-                    bound
-                } else if self < 0.0 {
-                    -bound
-                } else {
-                    0.0
-                }
+            fn mul_coef(self, coef: Self::Coef) -> Self {
+                self * coef
+            }
+            #[inline(always)]
+            fn mul_coef_diff(a: Self, ca: Self, b: Self, cb: Self) -> Self {
+                a * ca - b * cb
             }
             #[inline(always)]
             fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self {
@@ -101,5 +158,7 @@ macro_rules! float_backend {
     };
 }
 
-float_backend!(f32, "f32", 100, 60);
-float_backend!(f64, "f64", 1000, 500);
+// Positions up to 2^64 (f32) and 2^500 (f64); states up to 2^120 and 2^1000, which leaves
+// 2^56 and 2^500 for the transient growth of a spring (see `Tuning::growth`).
+float_backend!(f32, "f32", 64, 120, f32::MIN_POSITIVE);
+float_backend!(f64, "f64", 500, 1000, f64::MIN_POSITIVE);

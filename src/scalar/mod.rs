@@ -1,8 +1,15 @@
-//! The arithmetic the whole crate is generic over: see [`Scalar`].
+//! The arithmetic the whole crate is generic over: see [`Scalar`], and the formats its
+//! backends keep a spring's gains and factors in.
 
 #[cfg(feature = "fixed")]
 mod fixed_point;
 mod float;
+#[cfg(feature = "fixed")]
+mod wide;
+
+#[cfg(feature = "fixed")]
+pub use fixed_point::{FixedFactor, FixedGains};
+pub use float::FloatGains;
 
 use core::fmt::Debug;
 
@@ -14,8 +21,8 @@ mod sealed {
 pub(crate) use sealed::Sealed;
 
 /// `defmt::Format` with the `defmt` feature, and nothing without it: a bound on the
-/// backends (and the length kernels' per-spring data) that lets every generic type of
-/// the crate derive `defmt::Format` exactly when the feature is on.
+/// backends' associated types that lets every generic type of the crate derive
+/// `defmt::Format` exactly when the feature is on.
 mod maybe_format {
     /// Implemented by every type; with the `defmt` feature, by every `defmt::Format`.
     #[cfg(feature = "defmt")]
@@ -31,114 +38,154 @@ mod maybe_format {
 }
 pub(crate) use maybe_format::MaybeFormat;
 
-/// A number format the springs can run in: `f32`, `f64`, `I16F16` or `I32F32`.
+/// A number format the springs run in: `f32`, `f64`, `I16F16` or `I32F32`.
 ///
-/// The methods are the complete arithmetic of the hot loops. Floats use plain IEEE
-/// arithmetic; fixed point saturates at the ends of its range and truncates products
-/// toward zero, as measured below.
+/// Positions, targets, velocities, masses and lengths are `Self`. Inside, each backend
+/// keeps the spring's state in the format that lets the discrete spring follow the
+/// continuous one at every rate from 60 Hz to 10 kHz:
 ///
-/// [`Scalar`] is implemented for `f32` (Cortex-M4F/M7/M33, which have a single-precision
-/// FPU), `f64` (host tools and tests) and, with the `fixed` feature, for
-/// `fixed::types::I16F16` and `fixed::types::I32F32` (Cortex-M0/M0+, which have no
-/// FPU at all).
+/// | backend | positions | state (offset, step velocity) | gains `C_k`, `C_d` | rounding |
+/// |---|---|---|---|---|
+/// | `f32` | `f32` | `f32` | `f32` | IEEE |
+/// | `f64` | `f64` | `f64` | `f64` | IEEE |
+/// | `I16F16` | Q16.16 | `i64`, Q24.40: 24 guard bits, ±2²³ units | 30-bit mantissas, one shared exponent | toward zero |
+/// | `I32F32` | Q32.32 | `i128`, Q64.64: 32 guard bits, ±2⁶³ units | 62-bit mantissas, one shared exponent | toward zero |
 ///
-/// Two formats per backend:
+/// Every step is the article's impulse (eq. 27/28 with `u = v·dt`) in the order
 ///
-/// - **Positions and per-step velocities** (`u = v·dt`) are `Self`.
-/// - **Coefficients** (`C_k`, `C_d`, the two-body weights `w_a`, `w_b`) are
-///   [`Scalar::Coef`]. In fixed point they keep many more fractional bits than
-///   positions: a 1 Hz spring stepped at 1 kHz has `C_k ≈ 3.9e−5`, which is only 3 LSB in
-///   Q16.16 (a 16 % error in stiffness) but 21 000 LSB in Q3.29.
+/// ```text
+/// u ← ũ − C_k·x        x ← x + u        ũ ← u − C_d·u
+/// ```
+///
+/// where `ũ = (1 − C_d)·u` is the step velocity the spring carries into the next step,
+/// already damped. It is algebraically the article's `u ← (1 − C_d)·u − C_k·x`, and each
+/// of its products is accurate where the other forms lose the spring:
+///
+/// - `C_d·u` rather than `(1 − C_d)·u`: at high rates `C_d` is small (a 1 Hz spring with
+///   ζ = 0.1 at 10 kHz has `C_d = 1.26e−4`) and `1 − C_d` keeps only the absolute
+///   precision of numbers near 1, 5e−4 of `C_d` in `f32`;
+/// - `ũ` stored rather than `u`: a heavily damped spring (`C_d → 1`) cancels `u − C_d·u`,
+///   and its exact start extrapolates one step back to a step velocity `u₀` that grows
+///   as `e^{2ζω·dt}` (7·10¹⁰ times the offset for ζ = 10 at 12 Hz and 60 Hz), beyond the
+///   range of fixed point and the precision of `f32`. `ũ₀ = (1 − C_d)·u₀` stays within
+///   the offset's magnitude. Measured through the public API, `f32` goes from an error of
+///   5.9e−2 of the amplitude to 3.6e−8 there (`tests/exact_map.rs`).
+///
+/// **Why guard bits.** Fixed point rounds the increment `a` to the state's last bit
+/// each step. Rounded toward zero (the only rounding whose spring always comes to rest,
+/// measured in `tests/fixed_rounding.rs`) it drags a lightly damped spring by `2/C_k`
+/// last bits of amplitude per cycle and stops it anywhere within `1/C_k` last bits of its
+/// target; `C_k` shrinks as `(ω·dt)²`, so at 10 kHz a 1 Hz spring (`C_k = 3.9e−7`) loses
+/// 5·10⁶ last bits per cycle. With the state's last bit 2⁻²⁴ of a position's, that is 0.3
+/// of a position's last bit. Run `cargo run --release -p stiffspring-lab --bin precision`
+/// for the whole study (every candidate representation, every rate).
+///
+/// **Why mantissas.** A 1 Hz spring at 10 kHz needs `C_k = 3.9e−7` to about 30
+/// significant bits (an undamped spring's phase drifts by `tan(θ/2)·ε` per step for a
+/// relative error `ε`); a fixed `Q3.29` fraction holds it to 210 last bits. Both gains
+/// share the exponent of the larger, so one shift finishes the sum of the two products.
 ///
 /// Every fixed-point operation saturates; none wraps. Float ↔ fixed conversion happens
-/// at set-up only ([`Scalar::from_f64`], [`Scalar::coef`]); the stepping code never
-/// touches a float when the backend is fixed point.
-///
-/// # Rounding in fixed point
-///
-/// Products of a position and a coefficient are computed exactly in a double-width
-/// integer, summed there, and rounded **once**, toward zero. The choice comes from the
-/// measurements in `tests/fixed_rounding.rs` (run
-/// `cargo test --release --test fixed_rounding -- --nocapture` for the table): 324
-/// trajectories, over exact-map tunings and lightly damped raw ones, each run until its
-/// state repeats.
-///
-/// | rounding | ends at rest | limit cycles | worst rest offset | worst cycle |
-/// |---|---|---|---|---|
-/// | toward −∞ (the `fixed` crate's) | 228 | 96 | `1/C_k` LSB | 144 half-bands, 322 LSB/step |
-/// | to nearest (any tie rule) | 192 | 132 | `0.5/C_k` LSB | 1795 half-bands, 1004 LSB/step |
-/// | **toward zero** | **324** | **0** | **`1/C_k` LSB** | none |
-///
-/// (A half-band is `0.5/C_k` LSB.) Round-to-nearest stops closer to the target but lets a
-/// lightly damped spring ring forever in a limit cycle hundreds of LSB wide, which no rest
-/// threshold can tell from motion. With truncation toward zero, every measured trajectory
-/// in the article's square `[0, 1]²` ended on a fixed point with `u = 0` inside the dead
-/// band `|x| < 1/C_k` LSB (600 more runs in `tests/fixed_point_limits.rs`). Beyond the
-/// square (`C_k > 1`, from an undersampled exact map) it can end in a limit cycle of a few
-/// LSB, near `1/C_d` LSB when very lightly damped. It is also symmetric, so a trajectory
-/// started from `−x₀` is exactly the negation of the one from `x₀`, and two equal masses
-/// get exactly opposite velocity changes (their momentum is conserved to the bit).
-///
-/// The price is a small drag: truncation shortens `u` by half an LSB per step on
-/// average, a Coulomb friction that costs a lightly damped spring `2/C_k` LSB of amplitude
-/// per cycle (bounded in `tests/exact_map.rs`). Even an undamped spring (`C_d = 0`) feels
-/// it, because the sum `u − C_k·x` is truncated, not `C_k·x` alone: over 10⁶ steps an
-/// `I16F16` spring of amplitude 100 loses 85 % of its energy at `C_k = 0.001` and 3 % at
-/// `C_k = 2.5`; `I32F32` at most 4·10⁻⁵ (`tests/long_runs.rs`).
-///
-/// The rest detection of [`SpringValue`](crate::SpringValue) widens its thresholds to cover
-/// the dead band, and beyond the square the limit cycles (`4/C_d` LSB), so a damped
-/// fixed-point value always settles.
+/// at set-up only; the stepping code never touches a float when the backend is fixed
+/// point.
 ///
 /// ```
 /// use stiffspring::Scalar;
 ///
-/// // The spring's velocity response (1 − C_d)·u − C_k·x for u = 2, x = 1,
-/// // C_d = 0.5, C_k = 0.25, rounded once.
-/// let u_next = f32::mul_coef_diff(2.0, f32::coef(0.5), 1.0, f32::coef(0.25));
-/// assert_eq!(u_next, 0.75);
+/// // One step of a spring with C_k = 0.25, C_d = 0.5 from x = 1, ũ = 2:
+/// // u = 2 − 0.25·1 = 1.75, x = 2.75, ũ = 1.75 − 0.5·1.75 = 0.875.
+/// let g = f32::gains(0.25, 0.5).unwrap();
+/// let (mut x, mut v) = (1.0f32, 2.0f32);
+/// f32::advance(&g, &mut x, &mut v);
+/// assert_eq!((x, v), (2.75, 0.875));
 /// ```
 pub trait Scalar:
     Sealed + MaybeFormat + Copy + PartialOrd + Debug + Default + Send + Sync + 'static
 {
-    /// The format of coefficients (`C_k`, `1 − C_d`, weights): a signed fraction in
-    /// `[−4, 4)`, with more precision than positions in fixed point.
-    type Coef: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+    /// The spring's internal state format (offsets and step velocities).
+    type State: MaybeFormat
+        + Copy
+        + PartialEq
+        + PartialOrd
+        + Debug
+        + Default
+        + Send
+        + Sync
+        + 'static;
+    /// The pair `(C_k, C_d)` in the format the step multiplies by.
+    type Gains: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+    /// A factor of any magnitude, applied at set-up and on retargets (the start weights,
+    /// two-body weights).
+    type Factor: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
 
     /// Zero.
     const ZERO: Self;
     /// One.
     const ONE: Self;
-    /// A short name for tables: `"f32"`, `"I16F16"`, ...
+    /// Zero in the state format.
+    const STATE_ZERO: Self::State;
+    /// A short name for tables and errors: `"f32"`, `"I16F16"`, ...
     const NAME: &'static str;
-    /// The smallest step between two values near zero, as `f64`; `0.0` for floats.
+    /// One last bit of a position, as `f64`; `0.0` for floats.
     const RESOLUTION: f64;
-    /// The largest magnitude accepted at set-up for positions, targets and velocities.
+    /// The largest magnitude of positions, targets and velocities accepted at set-up.
     ///
-    /// For floats it leaves headroom (`2¹⁰⁰` for `f32`, `2¹⁰⁰⁰` for `f64`) so that the
-    /// transient growth of a stable spring can never reach infinity. Fixed point accepts
-    /// its whole range and saturates.
-    const SAFE_MAGNITUDE: f64;
-
-    /// The largest magnitude of positions and step velocities in a
-    /// [`Scene`](crate::scene::Scene): small enough that a distance spring's squared
-    /// length stays finite (`2⁶⁰` for `f32`, `2⁵⁰⁰` for `f64`); the whole range in fixed
-    /// point, which saturates anyway.
-    const NETWORK_MAGNITUDE: f64;
+    /// For floats it leaves headroom (`2⁶⁴` for `f32`, `2⁵⁰⁰` for `f64`) for the transient
+    /// growth of a stable spring, so that no state ever becomes infinite (see
+    /// [`Tuning::growth`](crate::Tuning::growth)). Fixed point accepts its whole range.
+    const MAX: f64;
+    /// The largest magnitude the internal state holds (fixed point saturates there).
+    const STATE_MAX: f64;
 
     /// Converts from `f64`, rounding to nearest and saturating at the ends of the range
     /// (NaN becomes zero). Set-up only.
     fn from_f64(value: f64) -> Self;
-    /// Converts to `f64`: exact for `f32` and `I16F16`, rounded to nearest for `I32F32`
-    /// values beyond 53 significant bits.
+    /// Converts to `f64` (rounded to nearest for `I32F32` beyond 53 significant bits).
     fn to_f64(self) -> f64;
-    /// Converts a coefficient from `f64`, rounding to nearest and saturating to
-    /// `[−4, 4)` in fixed point. Set-up only.
+    /// The gains `(C_k, C_d)` in the step's format, rounded to nearest; `None` when a
+    /// non-zero gain would round to zero or below the state's resolution.
+    fn gains(stiffness: f64, damping: f64) -> Option<Self::Gains>;
+    /// The gains back as `(C_k, C_d)`.
+    fn gains_to_f64(gains: &Self::Gains) -> (f64, f64);
+    /// A factor from `f64` (saturating far beyond any use; NaN becomes zero).
+    fn factor(value: f64) -> Self::Factor;
+
+    /// A position as state, exactly.
+    fn widen(self) -> Self::State;
+    /// A state as a position: rounded to nearest, saturated to the backend's range.
+    fn narrow(state: Self::State) -> Self;
+    /// A state from `f64`, rounded to nearest, saturated (set-up only).
+    fn state_from_f64(value: f64) -> Self::State;
+    /// A state as `f64`.
+    fn state_to_f64(state: Self::State) -> f64;
+
+    /// `a + b` (saturating in fixed point).
+    fn state_add(a: Self::State, b: Self::State) -> Self::State;
+    /// `a − b` (saturating in fixed point).
+    fn state_sub(a: Self::State, b: Self::State) -> Self::State;
+    /// `s·f`, rounded toward zero in fixed point (saturating).
+    fn scale(state: Self::State, factor: Self::Factor) -> Self::State;
+    /// `|state| ≤ bound` for a non-negative `bound` (in fixed point one add and one
+    /// unsigned comparison).
+    fn within(state: Self::State, bound: Self::State) -> bool;
+
+    /// One step of a spring toward zero, from offset `x` and kept step velocity
+    /// `v = ũ`: `u = ũ − C_k·x; x += u; ũ = u − C_d·u`.
+    ///
+    /// In fixed point `C_k·x` is rounded toward zero (a slightly weaker spring, which
+    /// conserves an undamped spring's energy: each half of the step is a shear, a
+    /// bijection of the integer lattice) and `C_d·u` away from zero (damping that never
+    /// vanishes while `u ≠ 0`, so a damped spring always comes to rest).
+    fn advance(gains: &Self::Gains, x: &mut Self::State, v: &mut Self::State);
+
+    /// The format of fractions applied to positions (`C_k`, `C_d` and weights in a
+    /// network, a knob's shares): a signed fraction in `[−4, 4)`, with more fractional
+    /// bits than positions in fixed point (`Q3.29`, `Q3.61`).
+    type Coef: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+    /// A fraction from `f64`, rounded to nearest, saturated to `[−4, 4)`. Set-up only.
     fn coef(value: f64) -> Self::Coef;
-    /// Converts a coefficient back to `f64`.
+    /// A fraction back as `f64`.
     fn coef_to_f64(coef: Self::Coef) -> f64;
-    /// True when the value is finite and within [`Scalar::SAFE_MAGNITUDE`].
-    fn is_valid(self) -> bool;
 
     /// `self + rhs` (saturating in fixed point).
     fn add(self, rhs: Self) -> Self;
@@ -148,20 +195,14 @@ pub trait Scalar:
     fn neg(self) -> Self;
     /// `|self|` (saturating in fixed point).
     fn abs(self) -> Self;
-    /// `self · coef`, rounded once.
-    fn mul_coef(self, coef: Self::Coef) -> Self;
-    /// `a · ca − b · cb`, rounded once: the spring's velocity response
-    /// `(1 − C_d)·u − C_k·x`.
-    fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self;
-    /// `self · rhs`, rounded once (saturating in fixed point).
+    /// `self · rhs`, rounded once toward zero (saturating in fixed point).
     fn mul(self, rhs: Self) -> Self;
-    /// `Σ aᵢ·bᵢ`, rounded once (saturating in fixed point): projections onto a spring's
-    /// axis.
+    /// `self · coef`, rounded once toward zero.
+    fn mul_coef(self, coef: Self::Coef) -> Self;
+    /// `a·ca − b·cb`, rounded once toward zero.
+    fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self;
+    /// `Σ aᵢ·bᵢ`, rounded once toward zero (saturating in fixed point).
     fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self;
-    /// `self` limited to `[−bound, bound]`, with NaN mapped to zero: the safety net that
-    /// keeps an unstable network finite. The identity in fixed point, whose arithmetic
-    /// already saturates.
-    fn clamp_magnitude(self, bound: Self) -> Self;
 }
 
 #[cfg(test)]
@@ -171,9 +212,15 @@ mod tests {
     fn round_trip<S: Scalar>() {
         for v in [0.0, 1.0, -1.0, 0.5, 123.25, -7.75] {
             assert_eq!(S::from_f64(v).to_f64(), v, "{}", S::NAME);
+            assert_eq!(S::state_to_f64(S::from_f64(v).widen()), v, "{}", S::NAME);
+            assert_eq!(S::narrow(S::from_f64(v).widen()).to_f64(), v, "{}", S::NAME);
         }
-        for c in [0.0, 1.0, 0.5, 0.25, 3.5, -0.75] {
-            assert_eq!(S::coef_to_f64(S::coef(c)), c, "{}", S::NAME);
+        for (k, d) in [(1.0, 0.5), (0.25, 0.0), (3.5, 0.25), (1e-6, 0.125)] {
+            let g = S::gains(k, d).unwrap();
+            let (k2, d2) = S::gains_to_f64(&g);
+            // One shared exponent: each gain is exact to 2^−29 of the larger one.
+            let tolerance = k.max(d) * 2f64.powi(-29);
+            assert!((k2 - k).abs() <= tolerance && (d2 - d).abs() <= tolerance, "{}", S::NAME);
         }
         assert_eq!(S::from_f64(f64::NAN).to_f64(), 0.0);
     }

@@ -1,7 +1,7 @@
 //! The exact sampled-response map between a continuous damped oscillator and a tuning.
 //!
 //! A continuous oscillator `ẍ + 2ζω·ẋ + ω²·x = 0` has poles `s₁, s₂`. Put
-//! `zᵢ = e^{sᵢ·dt}`. The discrete spring `u ← (1 − C_d)·u − C_k·x, x ← x + u` has the
+//! `zᵢ = e^{sᵢ·dt}`. The discrete spring `u ← u − C_k·x − C_d·u, x ← x + u` has the
 //! characteristic polynomial `z² − (2 − C_k − C_d)·z + (1 − C_d)`, so choosing
 //!
 //! ```text
@@ -20,27 +20,27 @@
 //! | ζ = 1 | `expm1(−ω·dt)²` |
 //! | ζ > 1 | `expm1(−ω·dt·r₁)·expm1(−ω·dt·r₂)`, `r₂ = ζ + √((ζ−1)(ζ+1))`, `r₁ = 1/r₂` |
 //!
-//! Everything here runs once, at set-up, in `f64` through `libm`.
+//! Everything here is a `const fn` on the crate's own `exp`, `expm1`, `sin` and `sqrt`
+//! (`src/math.rs`), so a tuning can be computed at compile time.
 
 use super::Tuning;
-use crate::error::{Error, Parameter, non_negative, positive};
+use crate::error::{Bound, Error, Parameter, check, non_negative, positive, tri};
+use crate::math::{exp, expm1, sin, sqrt};
 use core::f64::consts::TAU;
-use libm::{atan2, exp, expm1, hypot, log, log1p, sin, sinh, sqrt};
 
 /// A continuous damped harmonic oscillator: natural frequency and damping ratio.
 ///
-/// It is the physical description that UI platforms and physics use; [`Oscillator::tuning`]
-/// turns it into the coefficients that reproduce it exactly at a given `dt`, and
-/// [`Tuning::oscillator`] goes back.
+/// It is the physical description that UI platforms and physics use;
+/// [`Oscillator::tuning`] turns it into the coefficients that reproduce it exactly at a
+/// given `dt`. The UI platforms' named springs are `Oscillator` constants in
+/// [`presets`](crate::presets).
 ///
 /// ```
 /// use stiffspring::Oscillator;
 ///
 /// let osc = Oscillator::new(2.0, 0.3)?; // 2 Hz, ζ = 0.3
 /// let at_60 = osc.tuning(1.0 / 60.0)?;
-/// let back = at_60.oscillator(1.0 / 60.0)?;
-/// assert!((back.frequency() - 2.0).abs() < 1e-12);
-/// assert!((back.damping_ratio() - 0.3).abs() < 1e-12);
+/// assert_eq!(at_60.oscillator(), Some(osc));
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,21 +56,15 @@ impl Oscillator {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`], [`Error::NotPositive`] for the frequency,
-    /// [`Error::Negative`] for the damping ratio.
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for either.
     ///
     /// ```
     /// assert!(stiffspring::Oscillator::new(1.5, 1.0).is_ok());
     /// assert!(stiffspring::Oscillator::new(1.5, -0.1).is_err());
     /// ```
-    pub fn new(frequency: f64, damping_ratio: f64) -> Result<Self, Error> {
-        let f = positive(frequency, Parameter::Frequency)?;
+    pub const fn new(frequency: f64, damping_ratio: f64) -> Result<Self, Error> {
+        let f = tri!(positive(frequency, Parameter::Frequency));
         Self::from_angular_frequency(TAU * f, damping_ratio)
-    }
-
-    /// An oscillator from values known to be valid (positive `omega`, non-negative `zeta`).
-    pub(crate) const fn from_parts(omega: f64, zeta: f64) -> Self {
-        Oscillator { omega, zeta }
     }
 
     /// An oscillator of angular natural frequency `omega` (rad/s).
@@ -84,9 +78,9 @@ impl Oscillator {
     /// assert_eq!(o.angular_frequency(), 10.0);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn from_angular_frequency(omega: f64, damping_ratio: f64) -> Result<Self, Error> {
-        let omega = positive(omega, Parameter::Frequency)?;
-        let zeta = non_negative(damping_ratio, Parameter::DampingRatio)?;
+    pub const fn from_angular_frequency(omega: f64, damping_ratio: f64) -> Result<Self, Error> {
+        let omega = tri!(positive(omega, Parameter::Frequency));
+        let zeta = tri!(non_negative(damping_ratio, Parameter::DampingRatio));
         Ok(Oscillator { omega, zeta })
     }
 
@@ -95,26 +89,34 @@ impl Oscillator {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`], [`Error::NotPositive`] for `k` and `m`, [`Error::Negative`]
-    /// for `c`; [`Error::OutOfRange`] with [`Parameter::SpringConstant`] when `√(k/m)` or
-    /// `ζ` is not a finite positive `f64`.
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for `k`, `c` and `m`, or when `√(k/m)`
+    /// or `ζ` is not a finite positive `f64`.
     ///
     /// ```
     /// let o = stiffspring::Oscillator::from_physical(100.0, 2.0, 1.0)?;
     /// assert_eq!((o.angular_frequency(), o.damping_ratio()), (10.0, 0.1));
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn from_physical(k: f64, c: f64, m: f64) -> Result<Self, Error> {
-        let k = positive(k, Parameter::SpringConstant)?;
-        let c = non_negative(c, Parameter::DampingConstant)?;
-        let m = positive(m, Parameter::Mass)?;
+    pub const fn from_physical(k: f64, c: f64, m: f64) -> Result<Self, Error> {
+        let k = tri!(positive(k, Parameter::SpringConstant));
+        let c = tri!(non_negative(c, Parameter::DampingConstant));
+        let m = tri!(positive(m, Parameter::Mass));
         // ω = √(k/m) and ζ = c/(2√(km)) = c/(2mω); each quotient is formed once.
         let omega = sqrt(k / m);
         let zeta = c / (2.0 * m * omega);
-        if !(omega > 0.0 && omega.is_finite() && zeta.is_finite()) {
-            return Err(Error::OutOfRange(Parameter::SpringConstant));
+        if !(omega > 0.0 && omega.is_finite()) {
+            return Err(Error::OutOfRange {
+                parameter: Parameter::SpringConstant,
+                value: k,
+                bound: Bound::Positive,
+            });
         }
         Self::from_angular_frequency(omega, zeta)
+    }
+
+    /// An oscillator from values known to be valid (positive `omega`, non-negative `zeta`).
+    pub(crate) const fn from_parts(omega: f64, zeta: f64) -> Self {
+        Oscillator { omega, zeta }
     }
 
     /// The natural frequency in hertz.
@@ -123,7 +125,7 @@ impl Oscillator {
     /// assert_eq!(stiffspring::Oscillator::new(3.0, 0.0)?.frequency(), 3.0);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn frequency(&self) -> f64 {
+    pub const fn frequency(&self) -> f64 {
         self.omega / TAU
     }
 
@@ -134,7 +136,7 @@ impl Oscillator {
     /// assert_eq!(o.angular_frequency(), core::f64::consts::TAU);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn angular_frequency(&self) -> f64 {
+    pub const fn angular_frequency(&self) -> f64 {
         self.omega
     }
 
@@ -144,7 +146,7 @@ impl Oscillator {
     /// assert_eq!(stiffspring::Oscillator::new(1.0, 0.7)?.damping_ratio(), 0.7);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn damping_ratio(&self) -> f64 {
+    pub const fn damping_ratio(&self) -> f64 {
         self.zeta
     }
 
@@ -155,10 +157,11 @@ impl Oscillator {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`; [`Error::Aliased`] for an
-    /// undamped oscillator at a multiple of half the sample rate;
-    /// [`Error::OutOfRange`] with [`Parameter::Frequency`] when `ω·dt` overflows or
-    /// `C_k` underflows (a frequency too high or too low for `f64` at this `dt`).
+    /// - [`Error::NotFinite`] or [`Error::OutOfRange`] for `dt`;
+    /// - [`Error::Aliased`] for an undamped oscillator at a multiple of half the sample
+    ///   rate;
+    /// - [`Error::OutOfRange`] with [`Parameter::Frequency`] when `ω·dt` overflows or
+    ///   `C_k` underflows (a frequency too high or too low for `f64` at this `dt`);
     ///
     /// ```
     /// use stiffspring::Oscillator;
@@ -169,15 +172,20 @@ impl Oscillator {
     /// assert!((t.stiffness() - 3.9232e-5).abs() < 1e-8);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn tuning(&self, dt: f64) -> Result<Tuning, Error> {
-        let dt = positive(dt, Parameter::TimeStep)?;
+    pub const fn tuning(&self, dt: f64) -> Result<Tuning, Error> {
+        let dt = tri!(positive(dt, Parameter::TimeStep));
         let wh = self.omega * dt;
         if !wh.is_finite() {
-            return Err(Error::OutOfRange(Parameter::Frequency));
+            return Err(Error::OutOfRange {
+                parameter: Parameter::Frequency,
+                value: self.omega / TAU,
+                bound: Bound::Below {
+                    max: f64::MAX / TAU / dt,
+                },
+            });
         }
         let z = self.zeta;
         let a = z * wh;
-        let retention = exp(-2.0 * a);
         let damping = -expm1(-2.0 * a);
         let stiffness = if z < 1.0 {
             let half_wdh = 0.5 * wh * sqrt((1.0 - z) * (1.0 + z));
@@ -192,38 +200,75 @@ impl Oscillator {
             let r2 = z + sqrt(z - 1.0) * sqrt(z + 1.0);
             expm1(-wh / r2) * expm1(-wh * r2)
         };
-        if !stiffness.is_finite() {
-            return Err(Error::OutOfRange(Parameter::Frequency));
+        if !(stiffness > 0.0 && stiffness.is_finite()) {
+            return Err(Error::OutOfRange {
+                parameter: Parameter::Frequency,
+                value: self.omega / TAU,
+                bound: Bound::Positive,
+            });
         }
-        Tuning::from_map(stiffness, damping, retention)
+        // Undamped: the poles are on the unit circle, distinct unless they meet at
+        // z = ±1 (C_k·(4 − C_k) = 16·sin²(ω·dt) is then below rounding, f·dt = k/2).
+        let undamped_edge = damping == 0.0 && stiffness * (4.0 - stiffness) > 16.0 * f64::EPSILON;
+        if !(undamped_edge || super::is_strictly_stable(stiffness, damping)) {
+            return Err(Error::Aliased {
+                frequency_times_dt: wh / TAU,
+            });
+        }
+        Ok(Tuning {
+            stiffness,
+            damping,
+            retention: exp(-2.0 * a),
+            dt,
+            start: self.kept_start_weights(dt),
+            oscillator: Some(*self),
+        })
     }
 
-    /// The step velocity `u₀ = x(0) − x(−dt)` that starts the discrete spring on the
-    /// continuous trajectory through offset `x0` (from the rest position) with velocity
-    /// `v0`.
-    ///
-    /// `v0·dt` would be the obvious choice and is only first-order right (and a value
-    /// released from rest with `u₀ = 0` is off by about `C_k/2·x0` per step). With this
-    /// `u₀` and the tuning from [`Oscillator::tuning`], every later sample is exact.
-    ///
-    /// ```
-    /// let o = stiffspring::Oscillator::new(2.0, 0.3)?;
-    /// let u0 = o.start_step_velocity(0.0, 10.0, 1.0 / 60.0);
-    /// assert!((u0 - 10.0 / 60.0).abs() < 0.01); // close to v0·dt, but not equal
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn start_step_velocity(&self, x0: f64, v0: f64, dt: f64) -> f64 {
-        let (p, q) = self.start_weights(dt);
-        p * x0 + q * v0
+    /// `(P̃, Q̃) = (1 − C_d)·(P, Q)` of [`Oscillator::start_weights`], formed so that they
+    /// never overflow: `ũ₀ = e^{−2a}·(x(0) − x(−h))` with `a = ζω·h` is
+    /// `x₀·(e^{−2a} − e^{−a}·C(h) + e^{−a}·S(h)·ζω) + v₀·e^{−a}·S(h)`, and `e^{−a}·C(h)`,
+    /// `e^{−a}·S(h)` stay below 1 because `C` and `S` grow at most as `e^{a}`. Every
+    /// difference of nearly equal terms is taken through `expm1`.
+    const fn kept_start_weights(&self, dt: f64) -> (f64, f64) {
+        let (w, z, h) = (self.omega, self.zeta, dt);
+        let a = z * w * h;
+        if z < 1.0 {
+            // C = cos b, S = sin(b)/ω_d:
+            // e^{−2a} − e^{−a}·cos b = expm1(−2a) − expm1(−a) + 2e^{−a}·sin²(b/2).
+            let wd = w * sqrt((1.0 - z) * (1.0 + z));
+            let b = wd * h;
+            let s = sin(0.5 * b);
+            let decay = exp(-a);
+            let q = decay * sin(b) / wd;
+            (expm1(-2.0 * a) - expm1(-a) + 2.0 * decay * s * s + q * z * w, q)
+        } else if z == 1.0 {
+            // C = 1, S = h.
+            let decay = exp(-a);
+            let q = decay * h;
+            (expm1(-2.0 * a) - expm1(-a) + q * w, q)
+        } else {
+            // C = cosh g, S = sinh(g)/γ, γ = ω√(ζ² − 1) < ζω:
+            // e^{−a}·cosh g − 1 = ½(expm1(g − a) + expm1(−g − a)),
+            // e^{−a}·sinh g = ½(expm1(g − a) − expm1(−g − a)).
+            let gamma = w * sqrt((z - 1.0) * (z + 1.0));
+            let g = gamma * h;
+            let (up, down) = (expm1(g - a), expm1(-g - a));
+            let q = 0.5 * (up - down) / gamma;
+            (expm1(-2.0 * a) - 0.5 * (up + down) + q * z * w, q)
+        }
     }
 
-    /// The weights `(P, Q)` of [`Oscillator::start_step_velocity`], which is linear:
-    /// `u₀ = P·x0 + Q·v0`.
+    /// The weights `(P, Q)` of the step velocity `u₀ = P·x₀ + Q·v₀ = x(0) − x(−dt)` that
+    /// starts the discrete spring on the continuous trajectory through offset `x₀` (from
+    /// the rest position) with velocity `v₀`.
     ///
-    /// A spring value precomputes them at set-up, so that retargeting (`u += P·Δx`) and
-    /// flinging cost no transcendental function. Both are finite unless the backward
-    /// extrapolation `x(−dt)` overflows `f64`, which takes a heavily overdamped
-    /// oscillator with `ζω·dt` in the hundreds.
+    /// `v₀·dt` would be the obvious choice and is only first-order right (and a value
+    /// released from rest with `u₀ = 0` is off by about `C_k/2·x₀` per step). With these
+    /// weights and [`Oscillator::tuning`], every later sample is exact. Both are infinite
+    /// when the backward extrapolation `x(−dt)` overflows `f64`, which takes a heavily
+    /// overdamped oscillator with `ζω·dt` in the hundreds; values never need them, they
+    /// keep `(1 − C_d)·u₀`, which stays finite (see [`Scalar`](crate::Scalar)).
     ///
     /// ```
     /// let (p, q) = stiffspring::Oscillator::new(1.0, 0.0)?.start_weights(1e-3);
@@ -232,7 +277,7 @@ impl Oscillator {
     /// assert!((q - 1e-3).abs() < 1e-8); // sin(ωh)/ω
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn start_weights(&self, dt: f64) -> (f64, f64) {
+    pub const fn start_weights(&self, dt: f64) -> (f64, f64) {
         // x(t) = e^{−ζωt}·[x0·C(t) + (v0 + ζω·x0)·S(t)], with C even and S odd, so
         // x(−h) = e^{a}·[x0·C(h) − (v0 + ζω·x0)·S(h)] and
         // u0 = x0·(1 − e^{a}·C(h) + e^{a}·S(h)·ζω) + v0·e^{a}·S(h).
@@ -251,7 +296,8 @@ impl Oscillator {
             // C = cosh(γt), S = sinh(γt)/γ with γ = ω√(ζ²−1) < ζω, so both expm1 are > 0.
             let gamma = w * sqrt((z - 1.0) * (z + 1.0));
             let g = gamma * h;
-            (-0.5 * (expm1(a + g) + expm1(a - g)), sinh(g) / gamma)
+            let sinh = 0.5 * (expm1(g) - expm1(-g));
+            (-0.5 * (expm1(a + g) + expm1(a - g)), sinh / gamma)
         };
         let q = grow * s_h;
         (one_minus_grow_c + q * z * w, q)
@@ -271,8 +317,12 @@ impl Tuning {
     /// assert!(t.stiffness() > 0.0 && t.stiffness() < 0.05);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn from_frequency(frequency: f64, damping_ratio: f64, dt: f64) -> Result<Self, Error> {
-        Oscillator::new(frequency, damping_ratio)?.tuning(dt)
+    pub const fn from_frequency(
+        frequency: f64,
+        damping_ratio: f64,
+        dt: f64,
+    ) -> Result<Self, Error> {
+        tri!(Oscillator::new(frequency, damping_ratio)).tuning(dt)
     }
 
     /// The exact tuning for a mass `m` on a spring `k` with damper `c`, stepped every
@@ -283,74 +333,85 @@ impl Tuning {
     /// As [`Oscillator::from_physical`] and [`Oscillator::tuning`].
     ///
     /// ```
-    /// // k = m/dt² would be the article's k_max; the exact map of a softer spring:
     /// let t = stiffspring::Tuning::from_physical(400.0, 4.0, 1.0, 1e-3)?;
     /// assert!((t.stiffness() - 400.0 * 1e-6).abs() < 1e-6);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn from_physical(k: f64, c: f64, m: f64, dt: f64) -> Result<Self, Error> {
-        Oscillator::from_physical(k, c, m)?.tuning(dt)
+    pub const fn from_physical(k: f64, c: f64, m: f64, dt: f64) -> Result<Self, Error> {
+        tri!(Oscillator::from_physical(k, c, m)).tuning(dt)
     }
 
-    /// The continuous oscillator this tuning samples exactly when stepped every `dt`: the
-    /// inverse of [`Oscillator::tuning`].
+    /// The continuous oscillator this tuning samples exactly: the stored one for a tuning
+    /// from the exact map, else the inverse of the map (which needs the `libm` feature).
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`;
     /// [`Error::NoContinuousEquivalent`] when a pole of the map is zero or negative real
     /// (any `C_d ≥ 1`, including [`Tuning::rigid`]) or `C_k = 0`.
     ///
     /// ```
     /// use stiffspring::{Error, Tuning};
     ///
-    /// let t = Tuning::from_coefficients(0.04, 0.1)?;
-    /// let o = t.oscillator(1.0 / 60.0)?;
+    /// let t = Tuning::from_coefficients(0.04, 0.1, 1.0 / 60.0)?;
+    /// let o = t.equivalent_oscillator()?;
     /// assert!((o.frequency() - 1.97).abs() < 0.01);
-    /// assert_eq!(Tuning::rigid().oscillator(0.01), Err(Error::NoContinuousEquivalent));
+    /// assert_eq!(
+    ///     Tuning::rigid(0.01)?.equivalent_oscillator(),
+    ///     Err(Error::NoContinuousEquivalent)
+    /// );
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn oscillator(&self, dt: f64) -> Result<Oscillator, Error> {
-        let h = positive(dt, Parameter::TimeStep)?;
+    #[cfg(feature = "libm")]
+    pub fn equivalent_oscillator(&self) -> Result<Oscillator, Error> {
+        use libm::{atan2, hypot, log, log1p};
+        if let Some(o) = self.oscillator {
+            return Ok(o);
+        }
+        let h = self.dt;
         let ck = self.stiffness;
-        let keep = self.retention;
+        let cd = self.damping;
+        let keep = 1.0 - cd;
         if ck <= 0.0 || keep <= 0.0 {
             return Err(Error::NoContinuousEquivalent);
         }
-        let cd = self.damping();
         let sum = ck + cd;
         // 4·det − trace² = 4·C_k − (C_k + C_d)², formed without the 4 − 4 cancellation.
         let neg_disc = 4.0 * ck - sum * sum;
-        // ln(1 − C_d) through log1p where 1 − C_d is near 1 (there `cd` is exact by
-        // Sterbenz's lemma), directly elsewhere.
         let ln_keep = if keep > 0.5 { log1p(-cd) } else { log(keep) };
         let (omega, zeta) = if neg_disc > 0.0 {
             // Complex pair: |z|² = 1 − C_d, arg z = θ.
             let decay_rate = -0.5 * ln_keep / h; // ζω
-            let theta = atan2(sqrt(neg_disc), 1.0 + keep - ck);
+            let theta = atan2(libm::sqrt(neg_disc), 1.0 + keep - ck);
             let omega = hypot(decay_rate, theta / h);
             (omega, decay_rate / omega)
         } else {
-            // Real pair. Both poles are positive exactly when trace = 1 + keep − C_k > 0
-            // (their product keep is > 0 already). With mᵢ = 1 − zᵢ, m₁·m₂ = C_k and
-            // m₁ + m₂ = C_k + C_d: the larger m₂ is formed directly, the smaller m₁ from the
-            // product, and the fast pole as z₂ = keep/z₁, because m₂ rounds to 1 where
-            // z₂ is tiny (a heavily overdamped spring) and 1 − m₂ would lose it.
+            // Real pair; both poles positive exactly when trace = 1 + keep − C_k > 0.
+            // With mᵢ = 1 − zᵢ, m₁·m₂ = C_k and m₁ + m₂ = C_k + C_d.
             if 1.0 + keep - ck <= 0.0 {
                 return Err(Error::NoContinuousEquivalent);
             }
-            let m2 = 0.5 * (sum + sqrt(-neg_disc));
+            let m2 = 0.5 * (sum + libm::sqrt(-neg_disc));
             let ln_z1 = log1p(-ck / m2);
             let s1 = ln_z1 / h;
             let s2 = (ln_keep - ln_z1) / h;
-            let omega = sqrt(s1 * s2);
+            let omega = libm::sqrt(s1 * s2);
             (omega, -0.5 * (s1 + s2) / omega)
         };
         Oscillator::from_angular_frequency(omega, zeta).map_err(|_| Error::NoContinuousEquivalent)
     }
 }
 
-#[cfg(test)]
+/// `value` if it lies in `[min, max]`, for the preset constructors.
+pub(crate) const fn within(
+    value: f64,
+    parameter: Parameter,
+    min: f64,
+    max: f64,
+) -> Result<f64, Error> {
+    check(value, parameter, Bound::Within { min, max })
+}
+
+#[cfg(all(test, feature = "libm"))]
 mod tests {
     use super::*;
 
@@ -362,8 +423,9 @@ mod tests {
                     if f * dt >= 0.5 {
                         continue; // aliased: the inverse finds the alias, by design
                     }
-                    let osc = Oscillator::new(f, z)?;
-                    let back = osc.tuning(dt)?.oscillator(dt)?;
+                    let t = Oscillator::new(f, z)?.tuning(dt)?;
+                    let raw = Tuning::from_coefficients_extended(t.stiffness(), t.damping(), dt)?;
+                    let back = raw.equivalent_oscillator()?;
                     let fe = (back.frequency() - f).abs() / f;
                     let ze = (back.damping_ratio() - z).abs();
                     assert!(fe < 1e-6, "f {f} z {z} dt {dt}: {fe}");
@@ -377,8 +439,27 @@ mod tests {
     #[test]
     fn undamped_multiples_of_half_the_rate_alias() -> Result<(), Error> {
         let osc = Oscillator::new(50.0, 0.0)?;
-        assert_eq!(osc.tuning(0.01), Err(Error::Aliased));
+        assert!(matches!(osc.tuning(0.01), Err(Error::Aliased { .. })));
         assert!(osc.tuning(0.0099).is_ok());
+        Ok(())
+    }
+
+    #[test]
+    fn kept_start_weights_are_the_retention_times_the_start_weights() -> Result<(), Error> {
+        for (f, z, dt) in [(1.0, 0.1, 1e-3), (2.0, 1.0, 0.01), (3.0, 2.5, 0.02), (1.0, 0.0, 0.1)] {
+            let o = Oscillator::new(f, z)?;
+            let t = o.tuning(dt)?;
+            let (p, q) = o.start_weights(dt);
+            let (pk, qk) = t.start_weights();
+            let keep = t.retention();
+            assert!((pk - keep * p).abs() <= 1e-14 * (1.0 + (keep * p).abs()), "{f} {z} {dt}");
+            assert!((qk - keep * q).abs() <= 1e-14 * (keep * q).abs(), "{f} {z} {dt}");
+        }
+        // ζ = 300 at f·dt = 0.2: x(−dt) grows as e^{2ζω·dt} = e^{754}, beyond f64; the
+        // kept weights do not.
+        let t = Tuning::from_frequency(1.0, 300.0, 0.2)?;
+        let (pk, qk) = t.start_weights();
+        assert!(pk.is_finite() && qk.is_finite() && qk > 0.0);
         Ok(())
     }
 }

@@ -1,64 +1,67 @@
-//! What a spring is tuned to: a validated `(C_k, C_d)` pair, and the ways to get one.
+//! What a spring is tuned to: a validated `(C_k, C_d)` pair *sampled at a time step*, and
+//! the ways to get one.
 //!
-//! A [`Tuning`] is dimensionless. The article's point (eq. 13) is that `C_k` and `C_d` are
-//! fractions of the stiffest and most damped spring a step can express,
-//! `k_max = m/dt²` and `d_max = m/dt`, so the same pair behaves the same for any mass
-//! and any `dt`. Physical units only enter through the constructors that take a `dt`:
+//! A [`Tuning`] carries its `dt`. A value or a batch takes its time step from its tuning,
+//! so the two cannot disagree; a scene checks every spring's tuning against its own `dt`
+//! and rejects a mismatch ([`Error::TimeStepMismatch`]).
 //!
 //! | constructor | input |
 //! |---|---|
-//! | [`Tuning::rigid`] | nothing: `C_k = C_d = 1`, at rest in two steps |
-//! | [`Tuning::from_coefficients`] | `C_k, C_d ∈ [0, 1]`, the article's range |
+//! | [`Tuning::rigid`] | `dt`: `C_k = C_d = 1`, at rest in two steps |
+//! | [`Tuning::from_coefficients`] | `C_k, C_d ∈ [0, 1]`, the article's range, and `dt` |
 //! | [`Tuning::from_coefficients_extended`] | up to the exact single-spring stability limit |
 //! | [`Tuning::from_frequency`] | natural frequency, damping ratio, `dt` (exact map) |
 //! | [`Tuning::from_physical`] | `k`, `c`, `m`, `dt` (exact map) |
-//! | [`Tuning::swiftui`], [`Tuning::android`], [`Tuning::react_spring`] | the UI platforms' parameters and presets |
+//! | [`Oscillator::tuning`] | any [`Oscillator`], the presets among them ([`presets`]) |
 //!
-//! and [`Tuning::oscillator`] goes back from a tuning to its frequency and damping ratio.
+//! Every constructor is a `const fn`, so a tuning can be computed at compile time: a
+//! firmware then carries two coefficients and no maths library. The [`tuning!`] macro
+//! does it and turns an invalid tuning into a compile error:
+//!
+//! ```
+//! use stiffspring::{tuning, Tuning};
+//!
+//! const CARD: Tuning = tuning!(Tuning::from_frequency(2.0, 0.7, 1.0 / 60.0));
+//! assert_eq!(CARD.dt(), 1.0 / 60.0);
+//! ```
+//!
+//! [`Error::TimeStepMismatch`]: crate::Error::TimeStepMismatch
+//! [`tuning!`]: crate::tuning!
 
-#[cfg(feature = "libm")]
 mod exact;
-#[cfg(feature = "libm")]
-mod presets;
+pub mod presets;
 
-#[cfg(feature = "libm")]
 pub use exact::Oscillator;
-#[cfg(feature = "libm")]
-pub use presets::{AndroidDamping, AndroidStiffness, ReactSpringPreset, SwiftUiPreset};
 
-use crate::error::{Error, Parameter};
+use crate::error::{Bound, Error, Parameter, check, positive, tri};
+use crate::math;
 
-/// A validated pair of spring coefficients `C_k` (stiffness) and `C_d` (damping).
+/// A validated pair of spring coefficients `C_k` (stiffness) and `C_d` (damping),
+/// sampled every `dt` seconds.
 ///
-/// Besides `C_k` and `C_d` the tuning keeps the *retention* `1 − C_d`, the fraction of the
-/// relative velocity a step keeps. The position-level step of a spring is
+/// The position-level step of a spring is (eq. 27/28 with `u = v·dt`)
 ///
 /// ```text
-/// u ← (1 − C_d)·u − C_k·x        x ← x + u        (u = v·dt)
+/// u ← u − (C_k·x + C_d·u)        x ← x + u
 /// ```
 ///
-/// Both are stored because each is the accurate one somewhere: the exact map computes
-/// `C_d = −expm1(−2ζω·dt)` and `1 − C_d = e^{−2ζω·dt}` separately, and a heavily damped
-/// spring needs the retention where `C_d` rounds to 1, while a raw `C_d` reads back exactly.
+/// Every constructor checks its input; a `Tuning` that exists is stable (or, for an
+/// undamped oscillator, marginally stable with distinct poles on the unit circle).
 ///
-/// Every constructor checks its input; a `Tuning` that exists is stable (or, for the
-/// undamped exact map, marginally stable with distinct poles on the unit circle).
+/// A tuning remembers where it came from:
 ///
-/// A tuning remembers where it came from ([`Tuning::samples_oscillator`]):
-///
-/// - **Raw coefficients** keep the article's discrete meaning. The step velocity is
-///   `v·dt`, a retarget keeps it, and a new `dt` keeps the coefficients (the article's
+/// - **Raw coefficients** keep the article's discrete meaning: a velocity `v` is the
+///   step velocity `v·dt`, and [`Tuning::with_dt`] keeps the coefficients (the article's
 ///   claim that behaviour per step does not depend on `dt`).
 /// - **The exact map** (frequency, physical constants, presets) samples a continuous
-///   oscillator. Values keep the *continuous* position and velocity across retargets,
-///   flings and changes of `dt`, and a new `dt` resamples the same oscillator.
+///   [`Oscillator`]: values keep the continuous position and velocity across retargets,
+///   flings and retunes, and [`Tuning::with_dt`] resamples the same oscillator.
 ///
 /// ```
 /// use stiffspring::Tuning;
 ///
-/// let t = Tuning::from_coefficients(0.2, 0.5)?;
-/// assert_eq!((t.stiffness(), t.damping()), (0.2, 0.5));
-/// assert_eq!(Tuning::rigid().stiffness(), 1.0);
+/// let t = Tuning::from_coefficients(0.2, 0.5, 0.01)?;
+/// assert_eq!((t.stiffness(), t.damping(), t.dt()), (0.2, 0.5, 0.01));
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -66,74 +69,119 @@ use crate::error::{Error, Parameter};
 pub struct Tuning {
     stiffness: f64,
     damping: f64,
+    /// `1 − C_d`, accurate where `C_d` rounds to 1 (the exact map computes it directly).
     retention: f64,
-    sampled: bool,
+    dt: f64,
+    /// `P̃` and `Q̃` of the kept step velocity `ũ = (1 − C_d)·u = P̃·x + Q̃·v`.
+    start: (f64, f64),
+    oscillator: Option<Oscillator>,
+}
+
+/// Computes a [`Tuning`] at compile time; an invalid one is a compile error.
+///
+/// Takes any expression of type `Result<Tuning, Error>` that can be evaluated in a
+/// `const` context (every constructor of [`Tuning`] and [`Oscillator`] can).
+///
+/// ```
+/// use stiffspring::{presets, tuning, Tuning};
+///
+/// const KNOB: Tuning = tuning!(Tuning::from_frequency(40.0, 0.7, 1e-4));
+/// const BOUNCY: Tuning = tuning!(presets::swiftui::BOUNCY.tuning(1.0 / 120.0));
+/// assert!(KNOB.stiffness() > 0.0 && BOUNCY.damping() > 0.0);
+/// ```
+///
+/// ```compile_fail
+/// use stiffspring::{tuning, Tuning};
+/// const BAD: Tuning = tuning!(Tuning::from_coefficients(2.0, 0.5, 0.01)); // C_k > 1
+/// ```
+#[macro_export]
+macro_rules! tuning {
+    ($tuning:expr) => {
+        const {
+            match $tuning {
+                ::core::result::Result::Ok(t) => t,
+                ::core::result::Result::Err(_) => {
+                    ::core::panic!("invalid tuning: evaluate it at run time to see the Error")
+                }
+            }
+        }
+    };
 }
 
 impl Tuning {
-    /// The article's stiffest spring, `C_k = C_d = 1` (eq. 12).
+    /// The article's stiffest spring, `C_k = C_d = 1` (eq. 12), at `dt`.
     ///
-    /// The position reaches rest in one step for any offset, velocity, mass and `dt`, but
-    /// the step velocity is then `−x₀` (the erratum in DESIGN.md): the body is fully at
-    /// rest only after the **second** step.
-    ///
-    /// ```
-    /// use stiffspring::{SpringValue, Tuning};
-    ///
-    /// let mut v = SpringValue::<f32, 1>::new([5.0], Tuning::rigid(), 0.01)?;
-    /// v.set_target([0.0])?;
-    /// v.step();
-    /// assert_eq!(v.position(), [0.0]); // position at rest after one step...
-    /// assert_eq!(v.step_velocity(), [-5.0]); // ...but still moving
-    /// v.step();
-    /// assert_eq!((v.position(), v.step_velocity()), ([0.0], [0.0]));
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub const fn rigid() -> Self {
-        Tuning {
-            stiffness: 1.0,
-            damping: 1.0,
-            retention: 0.0,
-            sampled: false,
-        }
-    }
-
-    /// A tuning from raw coefficients in the article's range `0 ≤ C_k, C_d ≤ 1` (eq. 13).
-    ///
-    /// Soft, bouncy springs have values around `1e−3` to `1e−5`; `0.01` to `0.1` already
-    /// looks rigid. Values above 1 are stable up to a limit but *less* stiff, see
-    /// [`Tuning::from_coefficients_extended`].
+    /// The position reaches its target in one step for any offset, velocity, mass and
+    /// `dt`, as the article says. The article also implies the body is then at rest; it
+    /// is not quite: its velocity after that step is `−x₀/dt` (the step's displacement).
+    /// `C_d = 1` removes all of it in the next step, so the second step does not move
+    /// and a value keeps none of it ([`SpringValue::velocity`](crate::SpringValue::velocity)
+    /// reads 0).
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] for NaN or infinity, [`Error::OutOfRange`] outside `[0, 1]`.
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for `dt`.
     ///
     /// ```
-    /// use stiffspring::{Error, Parameter, Tuning};
+    /// use stiffspring::{Motion, SpringValue, Tuning};
     ///
-    /// assert!(Tuning::from_coefficients(0.01, 0.1).is_ok());
+    /// let mut v = SpringValue::<f32>::new([5.0], &Tuning::rigid(0.01)?)?;
+    /// v.set_target([0.0]);
+    /// assert_eq!(v.step(), Motion::Settled); // on target after one step
+    /// assert_eq!(v.position(), [0.0]);
+    /// assert_eq!(v.step(), Motion::Resting);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn rigid(dt: f64) -> Result<Self, Error> {
+        Tuning::from_coefficients(1.0, 1.0, dt)
+    }
+
+    /// A tuning from raw coefficients in the article's range `0 ≤ C_k, C_d ≤ 1` (eq. 13),
+    /// stepped every `dt`.
+    ///
+    /// Soft, bouncy springs have values around `1e−3` to `1e−5`; `0.01` to `0.1` already
+    /// looks rigid. Values above 1 are stable up to a limit but *less* stiff, see
+    /// [`Tuning::from_coefficients_extended`]. `C_k = C_d = 0` (nothing pulls, nothing
+    /// damps) is rejected: a value would drift for ever.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] for NaN or infinity, [`Error::OutOfRange`] outside `[0, 1]`
+    /// or for `dt ≤ 0`.
+    ///
+    /// ```
+    /// use stiffspring::{Bound, Error, Parameter, Tuning};
+    ///
+    /// assert!(Tuning::from_coefficients(0.01, 0.1, 0.01).is_ok());
     /// assert_eq!(
-    ///     Tuning::from_coefficients(0.5, -0.1),
-    ///     Err(Error::OutOfRange(Parameter::Damping))
+    ///     Tuning::from_coefficients(1.5, 0.1, 0.01),
+    ///     Err(Error::OutOfRange {
+    ///         parameter: Parameter::Stiffness,
+    ///         value: 1.5,
+    ///         bound: Bound::Within { min: 0.0, max: 1.0 }
+    ///     })
     /// );
     /// ```
-    pub fn from_coefficients(stiffness: f64, damping: f64) -> Result<Self, Error> {
-        let (ck, cd) = finite_pair(stiffness, damping)?;
-        if !(0.0..=1.0).contains(&ck) {
-            return Err(Error::OutOfRange(Parameter::Stiffness));
+    pub const fn from_coefficients(stiffness: f64, damping: f64, dt: f64) -> Result<Self, Error> {
+        let unit = Bound::Within { min: 0.0, max: 1.0 };
+        let ck = tri!(check(stiffness, Parameter::Stiffness, unit));
+        let cd = tri!(check(damping, Parameter::Damping, unit));
+        if ck == 0.0 && cd == 0.0 {
+            return Err(Error::OutOfRange {
+                parameter: Parameter::Stiffness,
+                value: 0.0,
+                bound: Bound::Positive,
+            });
         }
-        if !(0.0..=1.0).contains(&cd) {
-            return Err(Error::OutOfRange(Parameter::Damping));
-        }
-        Ok(Tuning::raw(ck, cd))
+        Tuning::raw(ck, cd, dt)
     }
 
     /// A tuning from raw coefficients, allowing values above 1 up to the exact
     /// single-spring stability limit.
     ///
-    /// Accepts the article's square `[0, 1]²` and, beyond it, the open region where the
-    /// map on `(x, u)` has both eigenvalues strictly inside the unit circle (Jury's test on
-    /// `trace = 2 − C_k − C_d`, `det = 1 − C_d`):
+    /// Accepts the article's square `[0, 1]²` (less the origin) and, beyond it, the open
+    /// region where the map on `(x, u)` has both eigenvalues strictly inside the unit
+    /// circle (Jury's test on `trace = 2 − C_k − C_d`, `det = 1 − C_d`):
     ///
     /// ```text
     /// C_k > 0,    0 < C_d < 2,    C_k + 2·C_d < 4
@@ -141,100 +189,70 @@ impl Tuning {
     ///
     /// The article warns that such springs get *less* rigid, not more; they exist because
     /// the exact map produces them for undersampled oscillators, and because a tuning near
-    /// the limit is a useful stress test. Springs that share a particle have a much lower
-    /// limit.
+    /// the limit is a useful stress test.
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] for NaN or infinity, [`Error::OutOfRange`] outside both regions.
+    /// [`Error::NotFinite`] for NaN or infinity, [`Error::OutOfRange`] outside both regions
+    /// (naming `C_d` when it is outside `[0, 2)`, else `C_k`, with `C_k`'s upper limit
+    /// `4 − 2·C_d`).
     ///
     /// ```
     /// use stiffspring::Tuning;
     ///
-    /// assert!(Tuning::from_coefficients(1.5, 0.5).is_err());
-    /// assert!(Tuning::from_coefficients_extended(1.5, 0.5).is_ok());
-    /// assert!(Tuning::from_coefficients_extended(3.0, 0.5).is_err()); // 3 + 2·0.5 = 4
+    /// assert!(Tuning::from_coefficients(1.5, 0.5, 0.01).is_err());
+    /// assert!(Tuning::from_coefficients_extended(1.5, 0.5, 0.01).is_ok());
+    /// assert!(Tuning::from_coefficients_extended(3.0, 0.5, 0.01).is_err()); // 3 + 2·0.5 = 4
     /// ```
-    pub fn from_coefficients_extended(stiffness: f64, damping: f64) -> Result<Self, Error> {
-        let (ck, cd) = finite_pair(stiffness, damping)?;
-        let in_square = (0.0..=1.0).contains(&ck) && (0.0..=1.0).contains(&cd);
-        if in_square || is_strictly_stable(ck, cd) {
-            return Ok(Tuning::raw(ck, cd));
+    pub const fn from_coefficients_extended(
+        stiffness: f64,
+        damping: f64,
+        dt: f64,
+    ) -> Result<Self, Error> {
+        let ck = tri!(check(stiffness, Parameter::Stiffness, Bound::NonNegative));
+        let cd = tri!(check(damping, Parameter::Damping, Bound::NonNegative));
+        let in_square = ck <= 1.0 && cd <= 1.0;
+        if in_square {
+            return Tuning::from_coefficients(ck, cd, dt);
         }
-        // Name the coefficient that is out of its own range first, else blame C_k.
-        if !(0.0..2.0).contains(&cd) {
-            Err(Error::OutOfRange(Parameter::Damping))
-        } else {
-            Err(Error::OutOfRange(Parameter::Stiffness))
+        if is_strictly_stable(ck, cd) {
+            return Tuning::raw(ck, cd, dt);
         }
-    }
-
-    fn raw(stiffness: f64, damping: f64) -> Self {
-        Tuning {
-            stiffness,
-            damping,
-            retention: 1.0 - damping,
-            sampled: false,
-        }
-    }
-
-    /// Builds a tuning from `C_k`, `C_d` and `1 − C_d`, each already computed accurately by
-    /// the exact map. Accepts the stable region and its undamped edge `C_d = 0`,
-    /// `0 < C_k < 4` (distinct poles on the unit circle). An undamped oscillator whose
-    /// poles sit on `z = ±1` to within rounding (`C_k·(4 − C_k) = 16·sin²(ω·dt)` below
-    /// `16ε`, at `f·dt = k/2`) aliases; a `C_k` that underflowed to 0 is a frequency too
-    /// low for `f64` at this `dt`.
-    #[cfg(feature = "libm")]
-    pub(crate) fn from_map(stiffness: f64, damping: f64, retention: f64) -> Result<Self, Error> {
-        let ck = stiffness;
-        if ck == 0.0 && damping > 0.0 {
-            return Err(Error::OutOfRange(Parameter::Frequency));
-        }
-        let undamped_edge = damping == 0.0 && ck * (4.0 - ck) > 16.0 * f64::EPSILON;
-        if undamped_edge || is_strictly_stable(ck, damping) {
-            Ok(Tuning {
-                stiffness: ck,
-                damping,
-                retention,
-                sampled: true,
+        if cd >= 2.0 {
+            Err(Error::OutOfRange {
+                parameter: Parameter::Damping,
+                value: cd,
+                bound: Bound::Below { max: 2.0 },
             })
         } else {
-            Err(Error::Aliased)
+            Err(Error::OutOfRange {
+                parameter: Parameter::Stiffness,
+                value: ck,
+                bound: Bound::Below {
+                    max: 4.0 - 2.0 * cd,
+                },
+            })
         }
     }
 
-    /// Rebuilds a tuning from coefficients that were validated before being rounded to a
-    /// backend's format (see [`crate::kernel::Coefficients::tuning`]).
-    pub(crate) const fn from_parts(stiffness: f64, retention: f64, sampled: bool) -> Self {
-        Tuning {
+    const fn raw(stiffness: f64, damping: f64, dt: f64) -> Result<Self, Error> {
+        let dt = tri!(positive(dt, Parameter::TimeStep));
+        let retention = 1.0 - damping;
+        Ok(Tuning {
             stiffness,
-            damping: 1.0 - retention,
+            damping,
             retention,
-            sampled,
-        }
-    }
-
-    /// True when the tuning came from the exact map of a continuous [`Oscillator`]
-    /// (frequency, physical constants, a preset) rather than from raw coefficients.
-    ///
-    /// [`Oscillator`]: crate::Oscillator
-    ///
-    /// ```
-    /// use stiffspring::Tuning;
-    ///
-    /// assert!(!Tuning::rigid().samples_oscillator());
-    /// # #[cfg(feature = "libm")]
-    /// assert!(Tuning::from_frequency(1.0, 0.5, 0.01)?.samples_oscillator());
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub const fn samples_oscillator(&self) -> bool {
-        self.sampled
+            dt,
+            start: (0.0, retention * dt),
+            oscillator: None,
+        })
     }
 
     /// The stiffness coefficient `C_k`, a fraction of `k_max = m/dt²`.
     ///
     /// ```
-    /// assert_eq!(stiffspring::Tuning::rigid().stiffness(), 1.0);
+    /// assert_eq!(stiffspring::Tuning::rigid(0.01)?.stiffness(), 1.0);
+    /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub const fn stiffness(&self) -> f64 {
         self.stiffness
@@ -243,102 +261,151 @@ impl Tuning {
     /// The damping coefficient `C_d`, a fraction of `d_max = m/dt`.
     ///
     /// ```
-    /// assert_eq!(stiffspring::Tuning::rigid().damping(), 1.0);
+    /// assert_eq!(stiffspring::Tuning::rigid(0.01)?.damping(), 1.0);
+    /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub const fn damping(&self) -> f64 {
         self.damping
     }
 
-    /// The retention `1 − C_d`: the fraction of its relative velocity a spring keeps per
-    /// step, before the stiffness term. Exact where `C_d` itself would round to 1.
+    /// The time step the tuning is sampled at, in seconds.
     ///
     /// ```
-    /// assert_eq!(stiffspring::Tuning::rigid().retention(), 0.0);
+    /// assert_eq!(stiffspring::Tuning::rigid(0.01)?.dt(), 0.01);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    /// The continuous oscillator the tuning samples, if it came from the exact map.
+    ///
+    /// ```
+    /// use stiffspring::Tuning;
+    ///
+    /// assert_eq!(Tuning::rigid(0.01)?.oscillator(), None);
+    /// let t = Tuning::from_frequency(1.0, 0.5, 0.01)?;
+    /// assert_eq!(t.oscillator().map(|o| o.damping_ratio()), Some(0.5));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn oscillator(&self) -> Option<Oscillator> {
+        self.oscillator
+    }
+
+    /// The retention `1 − C_d`: the fraction of its step velocity a spring keeps into
+    /// the next step. For the exact map it is `e^{−2ζω·dt}`, exact where `C_d` itself
+    /// rounds to 1.
+    ///
+    /// ```
+    /// assert_eq!(stiffspring::Tuning::rigid(0.01)?.retention(), 0.0);
+    /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub const fn retention(&self) -> f64 {
         self.retention
     }
 
-    /// The spectral radius of the single-spring map on `(x, u)`: the factor by which the
-    /// slowest mode shrinks per step (1 for an undamped spring, 0 for [`Tuning::rigid`]).
+    /// The weights `(P̃, Q̃)` of the kept step velocity `ũ = (1 − C_d)·u = P̃·x + Q̃·v` that
+    /// puts a spring at offset `x` with velocity `v`: for the exact map,
+    /// `u = x(0) − x(−dt)` of the continuous trajectory through `(x, v)`; for raw
+    /// coefficients `u = v·dt`, the article's meaning.
+    pub(crate) const fn start_weights(&self) -> (f64, f64) {
+        self.start
+    }
+
+    /// The same spring at another time step: the exact map resamples its oscillator; raw
+    /// coefficients are kept (behaviour per step does not depend on `dt`).
     ///
-    /// Needs only a square root, so it is available without `libm`.
+    /// # Errors
+    ///
+    /// As the constructor the tuning came from, at `dt`.
     ///
     /// ```
     /// use stiffspring::Tuning;
     ///
-    /// assert_eq!(Tuning::rigid().spectral_radius(), 0.0);
-    /// let t = Tuning::from_coefficients(0.01, 0.0)?;
+    /// let t60 = Tuning::from_frequency(2.0, 0.5, 1.0 / 60.0)?;
+    /// let t120 = t60.with_dt(1.0 / 120.0)?;
+    /// assert_eq!(t120, Tuning::from_frequency(2.0, 0.5, 1.0 / 120.0)?);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn with_dt(&self, dt: f64) -> Result<Self, Error> {
+        match self.oscillator {
+            Some(o) => o.tuning(dt),
+            None => Tuning::raw(self.stiffness, self.damping, dt),
+        }
+    }
+
+    /// The spectral radius of the single-spring map on `(x, u)`: the factor by which the
+    /// slowest mode shrinks per step (1 for an undamped spring, 0 for [`Tuning::rigid`]).
+    ///
+    /// ```
+    /// use stiffspring::Tuning;
+    ///
+    /// assert_eq!(Tuning::rigid(0.01)?.spectral_radius(), 0.0);
+    /// let t = Tuning::from_coefficients(0.01, 0.0, 0.01)?;
     /// assert!((t.spectral_radius() - 1.0).abs() < 1e-12);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn spectral_radius(&self) -> f64 {
-        let trace = 2.0 - self.stiffness - self.damping();
-        let det = self.retention;
+    pub const fn spectral_radius(&self) -> f64 {
+        let (trace, det) = self.trace_det();
         let disc = trace * trace - 4.0 * det;
         if disc < 0.0 {
             // Complex pair: |z|² = det.
-            sqrt_f64(det)
+            math::sqrt(det)
         } else {
             // Real pair (trace ± √disc)/2: the larger magnitude takes the sign of trace.
-            (trace.abs() + sqrt_f64(disc)) * 0.5
+            (trace.abs() + math::sqrt(disc)) * 0.5
         }
+    }
+
+    /// A bound on the transient growth of the spring: from any state `(x₀, ũ₀)`, every
+    /// later `|x|` and `|ũ|` is at most `growth · max(|x₀|, |ũ₀|)`.
+    ///
+    /// Values use it to keep float states finite without a clamp in the step: set-up
+    /// limits the state to [`Scalar::STATE_MAX`](crate::Scalar::STATE_MAX)` / growth`.
+    /// The bound follows from `Mⁿ = sₙ·M − det·sₙ₋₁·I` (Cayley–Hamilton, with
+    /// `sₙ = (λ₁ⁿ − λ₂ⁿ)/(λ₁ − λ₂)`) and `|sₙ| ≤ min(n·ρⁿ⁻¹, 2/|λ₁ − λ₂|)`.
+    ///
+    /// ```
+    /// use stiffspring::Tuning;
+    ///
+    /// // Undamped at f·dt = 0.01: λ = e^{±iθ}, θ = 2π/100, growth ≈ 2/sin θ.
+    /// let g = Tuning::from_frequency(1.0, 0.0, 0.01)?.growth();
+    /// assert!(g > 20.0 && g < 60.0);
+    /// assert!(Tuning::rigid(0.01)?.growth() <= 3.0);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn growth(&self) -> f64 {
+        let (trace, det) = self.trace_det();
+        // ‖M‖∞ for M = [[1 − C_k, 1], [−det·C_k, det]] on (x, ũ), the state the values
+        // keep (see `Scalar`); its trace and determinant are those of the map on (x, u).
+        let a = (1.0 - self.stiffness).abs() + 1.0;
+        let b = (det * self.stiffness).abs() + det.abs();
+        let norm = if a > b { a } else { b };
+        let rho = self.spectral_radius();
+        // sup n·ρ^(n−1): 1 for ρ ≤ ½ (n = 1), else below 1/(e·ρ·ln(1/ρ)) ≤ 2/(e·(1 − ρ)).
+        let by_radius = if rho <= 0.5 {
+            1.0
+        } else if rho < 1.0 {
+            2.0 / (core::f64::consts::E * (1.0 - rho))
+        } else {
+            f64::INFINITY
+        };
+        let gap = math::sqrt((trace * trace - 4.0 * det).abs());
+        let by_gap = if gap > 0.0 { 2.0 / gap } else { f64::INFINITY };
+        let s = if by_radius < by_gap { by_radius } else { by_gap };
+        s * (norm + det.abs())
+    }
+
+    /// `(trace, det)` of the map on `(x, u)`.
+    const fn trace_det(&self) -> (f64, f64) {
+        let det = self.retention;
+        (1.0 + det - self.stiffness, det)
     }
 }
 
 /// Jury's conditions for a second-order map with `trace = 2 − C_k − C_d` and
 /// `det = 1 − C_d`: `|det| < 1`, `1 − trace + det > 0` (i.e. `C_k > 0`) and
 /// `1 + trace + det > 0` (i.e. `C_k + 2·C_d < 4`).
-pub(crate) fn is_strictly_stable(ck: f64, cd: f64) -> bool {
+pub(crate) const fn is_strictly_stable(ck: f64, cd: f64) -> bool {
     ck > 0.0 && cd > 0.0 && cd < 2.0 && ck + 2.0 * cd < 4.0
-}
-
-fn finite_pair(ck: f64, cd: f64) -> Result<(f64, f64), Error> {
-    if !ck.is_finite() {
-        return Err(Error::NotFinite(Parameter::Stiffness));
-    }
-    if !cd.is_finite() {
-        return Err(Error::NotFinite(Parameter::Damping));
-    }
-    Ok((ck, cd))
-}
-
-/// Square root without `libm`, for the few set-up computations that must work in a
-/// `--no-default-features` build. Newton's iteration from an exponent-halved guess
-/// converges to the correctly rounded root or one ULP from it in at most 7 steps.
-pub(crate) fn sqrt_f64(value: f64) -> f64 {
-    #[cfg(feature = "libm")]
-    {
-        libm::sqrt(value)
-    }
-    #[cfg(not(feature = "libm"))]
-    {
-        if !(value > 0.0) || !value.is_finite() {
-            return if value == 0.0 || value.is_infinite() {
-                value
-            } else {
-                0.0
-            };
-        }
-        // Halve the exponent for a guess within a factor of 2 of the root.
-        let bits = value.to_bits();
-        let mut x = f64::from_bits((bits >> 1) + (1023u64 << 51));
-        for _ in 0..8 {
-            x = 0.5 * (x + value / x);
-        }
-        x
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn newton_root_matches_exact_values() {
-        for v in [0.0, 1.0, 4.0, 2.0, 1e-300, 1e300, 0.01] {
-            let r = sqrt_f64(v);
-            assert!((r * r - v).abs() <= 4.0 * f64::EPSILON * v, "{v}");
-        }
-    }
 }

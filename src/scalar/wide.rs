@@ -1,0 +1,209 @@
+//! The wide arithmetic of the fixed-point state: a state times a mantissa, shifted by
+//! an exponent and rounded, without an integer three halves wide.
+//!
+//! A state `x` of `2H` bits is split into a signed high half `xₕ` and an unsigned low
+//! half `xₗ`, so `x·m = xₕ·m·2^H + xₗ·m`. Both partial products fit the state type when
+//! `|m| < 2^(H−1)`; `T = xₕm + ⌊xₗm / 2^H⌋` and `R = xₗm mod 2^H` then hold the exact
+//! product `p = T·2^H + R` of up to `3H − 1` bits. The shift and the rounding need only
+//! `T` and whether `R`'s low bits are zero. On a Cortex-M4 each partial product is one
+//! `smull`/`umull`; on a Cortex-M0 a library multiply.
+
+macro_rules! wide_arithmetic {
+    ($module:ident, $Half:ty, $HalfU:ty, $Full:ty, $FullU:ty) => {
+        pub(crate) mod $module {
+            /// Half the state width, in bits.
+            pub(crate) const H: u32 = <$Half>::BITS;
+            /// Mantissas are below this in magnitude.
+            pub(crate) const MANTISSA_LIMIT: $Half = <$Half>::MAX;
+
+            /// `x·m / 2^shift`, rounded toward zero (`AWAY = false`) or away from zero
+            /// (`AWAY = true`), saturated to the state type. `shift` may be negative (a
+            /// left shift, exact).
+            #[inline(always)]
+            pub(crate) fn mul_shift<const AWAY: bool>(x: $Full, m: $Half, shift: i32) -> $Full {
+                let (xh, xl) = ((x >> H) as $Half, x as $HalfU);
+                let high = xh as $Full * m as $Full;
+                let low = xl as $Full * m as $Full;
+                let t = high + (low >> H);
+                let r = (low as $FullU) & (<$HalfU>::MAX as $FullU);
+                let negative = t < 0;
+                // Round up (toward +∞) for negative products toward zero, for positive
+                // ones away from zero; a zero product has t = r = 0 and stays 0 either way.
+                let up = negative != AWAY;
+                if shift >= H as i32 {
+                    let k = (shift - H as i32) as u32;
+                    if k >= 2 * H - 1 {
+                        // |p| < 2^(3H − 2) ≤ 2^shift: 0 toward zero, ±1 away from it.
+                        let zero = t == 0 && r == 0;
+                        return if !AWAY || zero {
+                            0
+                        } else if negative {
+                            -1
+                        } else {
+                            1
+                        };
+                    }
+                    if up {
+                        // ⌈p/2^s⌉ = ⌊(T + 2^k − 1 + [R ≠ 0]) / 2^k⌋.
+                        let bias = ((1 as $Full) << k) - 1 + (r != 0) as $Full;
+                        (t + bias) >> k
+                    } else {
+                        t >> k
+                    }
+                } else if shift >= 0 {
+                    let s = shift as u32;
+                    // ⌊p/2^s⌋ = T·2^(H−s) + ⌊R/2^s⌋, saturating.
+                    let lift = H - s;
+                    let head = t << lift;
+                    if head >> lift != t {
+                        return if negative { <$Full>::MIN } else { <$Full>::MAX };
+                    }
+                    let floor = head + (r >> s) as $Full;
+                    let inexact = s > 0 && r & (((1 as $FullU) << s) - 1) != 0;
+                    floor + (up && inexact) as $Full
+                } else {
+                    // A factor of 2^(H−1) or more: p·2^(−shift), exact or saturating.
+                    let lift = (-shift) as u32;
+                    let p = t
+                        .checked_mul((1 as $Full) << H)
+                        .and_then(|v| v.checked_add(r as $Full));
+                    let lifted = match p {
+                        Some(0) => Some(0),
+                        Some(p) if lift < <$Full>::BITS - 1 => p.checked_mul((1 as $Full) << lift),
+                        _ => None,
+                    };
+                    lifted.unwrap_or(if negative { <$Full>::MIN } else { <$Full>::MAX })
+                }
+            }
+
+            /// `(mantissa, shift)` with `value ≈ mantissa / 2^shift` and
+            /// `2^(H−2) ≤ |mantissa| < 2^(H−1)`: `H − 1` significant bits. `(0, 0)` for zero,
+            /// NaN, infinities and magnitudes beyond what the shift range holds.
+            pub(crate) fn encode(value: f64) -> ($Half, i32) {
+                if !value.is_finite() || value == 0.0 {
+                    return (0, 0);
+                }
+                // 2^e ≤ |value| < 2^(e+1), from the exponent field (normal numbers).
+                let e = ((value.abs().to_bits() >> 52) & 0x7ff) as i32 - 1023;
+                let mut shift = (H as i32 - 2) - e;
+                loop {
+                    if !(-(2 * H as i32)..=(6 * H as i32)).contains(&shift) {
+                        return (0, 0);
+                    }
+                    let m = round(value * pow2(shift));
+                    if m.abs() < MANTISSA_LIMIT as f64 {
+                        return (m as $Half, shift);
+                    }
+                    // Rounding carried into the next power of two.
+                    shift -= 1;
+                }
+            }
+
+            /// `mantissa / 2^shift` as `f64`.
+            pub(crate) fn decode(mantissa: $Half, shift: i32) -> f64 {
+                mantissa as f64 * pow2(-shift)
+            }
+
+            /// `2^k` as `f64`, for `k` in the normal range.
+            fn pow2(k: i32) -> f64 {
+                f64::from_bits(((k + 1023) as u64) << 52)
+            }
+
+            /// Round half away from zero (`f64::round` is not in `core`).
+            fn round(v: f64) -> f64 {
+                let t = v as i128 as f64; // truncates toward zero; exact for |v| < 2^127
+                let frac = v - t;
+                if frac >= 0.5 {
+                    t + 1.0
+                } else if frac <= -0.5 {
+                    t - 1.0
+                } else {
+                    t
+                }
+            }
+        }
+    };
+}
+
+wide_arithmetic!(narrow, i32, u32, i64, u64);
+wide_arithmetic!(broad, i64, u64, i128, u128);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The exact quotient, toward zero or away from it, on i128 (the products fit).
+    fn reference(x: i64, m: i32, shift: i32, away: bool) -> i64 {
+        let p = x as i128 * m as i128;
+        let q = if shift >= 0 {
+            if shift >= 127 {
+                if away { p.signum() } else { 0 }
+            } else {
+                let d = 1i128 << shift;
+                let t = p / d; // toward zero
+                if away && t * d != p { t + p.signum() } else { t }
+            }
+        } else {
+            p.saturating_mul(1i128 << (-shift))
+        };
+        q.clamp(i64::MIN as i128, i64::MAX as i128) as i64
+    }
+
+    #[test]
+    fn narrow_matches_exact_arithmetic() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for _ in 0..200_000 {
+            let x = next() as i64 >> (next() % 64);
+            let m = (next() as i32) >> (next() % 32);
+            let m = if m == i32::MIN { 0 } else { m };
+            let shift = (next() % 110) as i32 - 12;
+            assert_eq!(narrow::mul_shift::<false>(x, m, shift), reference(x, m, shift, false));
+            assert_eq!(narrow::mul_shift::<true>(x, m, shift), reference(x, m, shift, true));
+        }
+        for &x in &[i64::MIN, i64::MAX, -1, 1, 0] {
+            for &m in &[-i32::MAX, i32::MAX, 1, -1, 0] {
+                for shift in [-40, -5, 0, 1, 31, 32, 33, 60, 93, 94, 95, 200] {
+                    for away in [false, true] {
+                        let got = if away {
+                            narrow::mul_shift::<true>(x, m, shift)
+                        } else {
+                            narrow::mul_shift::<false>(x, m, shift)
+                        };
+                        assert_eq!(got, reference(x, m, shift, away), "{x} {m} {shift} {away}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn broad_agrees_with_narrow_scaled_up() {
+        // The same values in the upper halves of the wide words give the same quotient.
+        for (x, m, s) in [(12345i64, 1 << 20, 40), (-98765, 3, 2), (-1, 1, 0), (7, -5, 1)] {
+            let n = narrow::mul_shift::<false>(x, m, s) as i128;
+            let b = broad::mul_shift::<false>((x as i128) << 32, m as i64, s + 32);
+            assert_eq!(n, b, "{x} {m} {s}");
+            let n = narrow::mul_shift::<true>(x, m, s) as i128;
+            let b = broad::mul_shift::<true>((x as i128) << 32, m as i64, s + 32);
+            assert_eq!(n, b, "{x} {m} {s}");
+        }
+    }
+
+    #[test]
+    fn encoding_keeps_thirty_one_bits() {
+        for v in [3.9e-7, 1.0, 3.999, 0.1, 1e-12, 2.5e6, -0.75] {
+            let (m, s) = narrow::encode(v);
+            assert!(((narrow::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-30), "{v}");
+            let (m, s) = broad::encode(v);
+            assert!(((broad::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-62), "{v}");
+        }
+        assert_eq!(narrow::encode(0.0), (0, 0));
+        assert_eq!(narrow::encode(f64::NAN), (0, 0));
+    }
+}
