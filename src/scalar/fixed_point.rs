@@ -164,12 +164,14 @@ macro_rules! fixed_backend {
                 state as f64 / (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64 / 4_294_967_296.0
             }
             #[inline(always)]
-            fn advance(gains: &Self::Gains, x: &mut $State, v: &mut $State) {
+            fn spring_term(gains: &Self::Gains, x: $State) -> $State {
                 let k = gains.stiffness;
+                $arith::mul_shift::<false>(x, k.mantissa, k.shift)
+            }
+            #[inline(always)]
+            fn damping_term(gains: &Self::Gains, u: $State) -> $State {
                 let d = gains.damping;
-                let u = v.saturating_sub($arith::mul_shift::<false>(*x, k.mantissa, k.shift));
-                *x = x.saturating_add(u);
-                *v = u.saturating_sub($arith::mul_shift::<true>(u, d.mantissa, d.shift));
+                $arith::mul_shift::<true>(u, d.mantissa, d.shift)
             }
             #[inline(always)]
             fn state_add(a: $State, b: $State) -> $State {
@@ -242,8 +244,125 @@ macro_rules! fixed_backend {
                 }
                 <$S>::from_bits($narrow_self(sum))
             }
+            #[inline(always)]
+            fn state_mul_coef(state: $State, coef: Self::Coef) -> $State {
+                $arith::mul_shift::<false>(state, coef.to_bits(), <$Coef>::FRAC_NBITS as i32)
+            }
+            #[inline(always)]
+            fn state_to_coef(state: $State, factor: Self::Factor) -> Self::Coef {
+                // The state's unit is 2^(FRAC + guard), a fraction's 2^(Coef FRAC).
+                let shift = factor.shift + (<$S>::FRAC_NBITS + $guard) as i32
+                    - <$Coef>::FRAC_NBITS as i32;
+                let v = $arith::mul_shift::<false>(state, factor.mantissa, shift);
+                <$Coef>::from_bits(v.clamp(<$Half>::MIN as $State, <$Half>::MAX as $State) as $Half)
+            }
+            fn norm<const D: usize>(d: &[$State; D]) -> $State {
+                <$State as WideGeometry>::norm(d)
+            }
+            #[inline(always)]
+            fn square_sum<const D: usize>(d: &[$State; D]) -> $State {
+                let mut sum: $State = 0;
+                for v in d {
+                    sum = sum.saturating_add(<$State as WideGeometry>::square(*v));
+                }
+                sum
+            }
+            fn ratio(a: $State, b: $State) -> Self::Coef {
+                <$Coef>::from_bits(<$State as WideGeometry>::ratio(a, b))
+            }
         }
     };
+}
+
+/// Lengths and ratios on the raw state integers, whose unit is `2^UNIT`.
+trait WideGeometry: Sized {
+    /// The fraction's raw type (`I3F29`'s `i32`, `I3F61`'s `i64`).
+    type Fraction;
+    /// `v²` in state units, rounded down, saturating.
+    fn square(v: Self) -> Self;
+    /// `√(Σ dᵢ²)`, rounded down, saturating.
+    fn norm<const D: usize>(d: &[Self; D]) -> Self;
+    /// `a/b` as a fraction (toward zero, saturating), 0 for `b ≤ 0`.
+    fn ratio(a: Self, b: Self) -> Self::Fraction;
+}
+
+impl WideGeometry for i64 {
+    type Fraction = i32;
+    fn square(v: i64) -> i64 {
+        // Q24.40: v² has 80 fractional bits; the square of any i64 fits i128.
+        let p = (v as i128 * v as i128) >> 40;
+        p.min(i64::MAX as i128) as i64
+    }
+    fn norm<const D: usize>(d: &[i64; D]) -> i64 {
+        // Σ dᵢ² of raw values is the squared length with 80 fractional bits, exact in
+        // u128 for D ≤ 3 (each square is below 2^126); its root has 40, the state's.
+        let mut sum = 0u128;
+        for v in d {
+            let r = v.unsigned_abs() as u128;
+            sum = sum.saturating_add(r * r);
+        }
+        sum.isqrt().min(i64::MAX as u128) as i64
+    }
+    fn ratio(a: i64, b: i64) -> i32 {
+        if b <= 0 {
+            return 0;
+        }
+        // a·2^29/b, toward zero (integer division truncates), saturated to Q3.29.
+        let q = ((a as i128) << 29) / b as i128;
+        q.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+    }
+}
+
+impl WideGeometry for i128 {
+    type Fraction = i64;
+    fn square(v: i128) -> i128 {
+        // Q64.64: v²/2^64 with v = h·2^64 + l is h²·2^64 + 2hl + ⌊l²/2^64⌋.
+        let m = v.unsigned_abs();
+        let (h, l) = (m >> 64, m & u64::MAX as u128);
+        let l2 = (l * l) >> 64;
+        let sum = h
+            .checked_mul(h)
+            .and_then(|hh| hh.checked_mul(1 << 64))
+            .and_then(|hh| (2 * h).checked_mul(l).and_then(|hl| hh.checked_add(hl)))
+            .and_then(|s| s.checked_add(l2));
+        match sum {
+            Some(s) if s <= i128::MAX as u128 => s as i128,
+            _ => i128::MAX,
+        }
+    }
+    fn norm<const D: usize>(d: &[i128; D]) -> i128 {
+        // Shift every component down until the largest is below 2^62, so that the sum of
+        // squares fits u128; the root shifts back up. Exact for separations below 2^62
+        // raw (2^−2 units), 62 significant bits beyond.
+        let largest = d.iter().map(|v| v.unsigned_abs()).max().unwrap_or(0);
+        let shift = (128 - largest.leading_zeros()).saturating_sub(62);
+        let mut sum = 0u128;
+        for v in d {
+            let r = v.unsigned_abs() >> shift;
+            sum = sum.saturating_add(r * r);
+        }
+        let root = sum.isqrt();
+        if root.leading_zeros() <= shift {
+            i128::MAX
+        } else {
+            (root << shift).min(i128::MAX as u128) as i128
+        }
+    }
+    fn ratio(a: i128, b: i128) -> i64 {
+        if b <= 0 {
+            return 0;
+        }
+        // Scale both down until b < 2^64; |a| ≥ 4b saturates, else (a << 61)/b fits.
+        let shift = (128 - b.leading_zeros()).saturating_sub(64);
+        let (a, b) = (a >> shift, b >> shift);
+        if b == 0 {
+            return 0;
+        }
+        if a.unsigned_abs() >= 4 * b.unsigned_abs() {
+            return if a > 0 { i64::MAX } else { i64::MIN };
+        }
+        (((a << 61) / b) as i64).clamp(i64::MIN, i64::MAX)
+    }
 }
 
 fixed_backend!(I16F16, i32, i64, u64, i32, I3F29, i64, narrow, narrow_q29, narrow_q16, 24, "I16F16");

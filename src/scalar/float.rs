@@ -17,7 +17,10 @@ pub struct FloatGains<F> {
 }
 
 macro_rules! float_backend {
-    ($F:ty, $name:literal, $max_exponent:literal, $state_exponent:literal, $min_gain:expr) => {
+    (
+        $F:ty, $name:literal, $max_exponent:literal, $state_exponent:literal, $min_gain:expr,
+        $sqrt:path
+    ) => {
         impl Sealed for $F {}
 
         impl Scalar for $F {
@@ -88,10 +91,12 @@ macro_rules! float_backend {
                 state as f64
             }
             #[inline(always)]
-            fn advance(gains: &Self::Gains, x: &mut Self, v: &mut Self) {
-                let u = *v - gains.stiffness * *x;
-                *x += u;
-                *v = u - gains.damping * u;
+            fn spring_term(gains: &Self::Gains, x: Self) -> Self {
+                gains.stiffness * x
+            }
+            #[inline(always)]
+            fn damping_term(gains: &Self::Gains, u: Self) -> Self {
+                gains.damping * u
             }
             #[inline(always)]
             fn state_add(a: Self, b: Self) -> Self {
@@ -154,11 +159,33 @@ macro_rules! float_backend {
                 }
                 sum
             }
+            #[inline(always)]
+            fn state_mul_coef(state: Self, coef: Self) -> Self {
+                state * coef
+            }
+            #[inline(always)]
+            fn state_to_coef(state: Self, factor: Self) -> Self {
+                state * factor
+            }
+            #[inline(always)]
+            fn norm<const D: usize>(d: &[Self; D]) -> Self {
+                $sqrt(Self::dot(d, d))
+            }
+            #[inline(always)]
+            fn square_sum<const D: usize>(d: &[Self; D]) -> Self {
+                Self::dot(d, d)
+            }
+            #[inline(always)]
+            fn ratio(a: Self, b: Self) -> Self {
+                // A comparison and a select, not `max` (a library call, `fmaxf`, on a
+                // Cortex-M4F, which has no `vmax`).
+                if b > 0.0 { a / b } else { 0.0 }
+            }
         }
     };
 }
 
 // Positions up to 2^64 (f32) and 2^500 (f64); states up to 2^120 and 2^1000, which leaves
 // 2^56 and 2^500 for the transient growth of a spring (see `Tuning::growth`).
-float_backend!(f32, "f32", 64, 120, f32::MIN_POSITIVE);
-float_backend!(f64, "f64", 500, 1000, f64::MIN_POSITIVE);
+float_backend!(f32, "f32", 64, 120, f32::MIN_POSITIVE, libm::sqrtf);
+float_backend!(f64, "f64", 500, 1000, f64::MIN_POSITIVE, libm::sqrt);

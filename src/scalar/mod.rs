@@ -169,14 +169,22 @@ pub trait Scalar:
     /// unsigned comparison).
     fn within(state: Self::State, bound: Self::State) -> bool;
 
+    /// The spring term `C_k·x`, rounded toward zero in fixed point (a slightly weaker
+    /// spring, which conserves an undamped spring's energy: each half of a step is a
+    /// shear, a bijection of the integer lattice).
+    fn spring_term(gains: &Self::Gains, x: Self::State) -> Self::State;
+    /// The damping term `C_d·u`, rounded away from zero in fixed point (damping that
+    /// never vanishes while `u ≠ 0`, so a damped spring always comes to rest).
+    fn damping_term(gains: &Self::Gains, u: Self::State) -> Self::State;
+
     /// One step of a spring toward zero, from offset `x` and kept step velocity
     /// `v = ũ`: `u = ũ − C_k·x; x += u; ũ = u − C_d·u`.
-    ///
-    /// In fixed point `C_k·x` is rounded toward zero (a slightly weaker spring, which
-    /// conserves an undamped spring's energy: each half of the step is a shear, a
-    /// bijection of the integer lattice) and `C_d·u` away from zero (damping that never
-    /// vanishes while `u ≠ 0`, so a damped spring always comes to rest).
-    fn advance(gains: &Self::Gains, x: &mut Self::State, v: &mut Self::State);
+    #[inline(always)]
+    fn advance(gains: &Self::Gains, x: &mut Self::State, v: &mut Self::State) {
+        let u = Self::state_sub(*v, Self::spring_term(gains, *x));
+        *x = Self::state_add(*x, u);
+        *v = Self::state_sub(u, Self::damping_term(gains, u));
+    }
 
     /// The format of fractions applied to positions (`C_k`, `C_d` and weights in a
     /// network, a knob's shares): a signed fraction in `[−4, 4)`, with more fractional
@@ -203,6 +211,21 @@ pub trait Scalar:
     fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self;
     /// `Σ aᵢ·bᵢ`, rounded once toward zero (saturating in fixed point).
     fn dot<const D: usize>(a: &[Self; D], b: &[Self; D]) -> Self;
+
+    /// `s·c`: a state times a fraction, rounded toward zero (saturating).
+    fn state_mul_coef(state: Self::State, coef: Self::Coef) -> Self::State;
+    /// `s·f` rounded toward zero and saturated to a fraction in `[−4, 4)`: an axis
+    /// component `dᵢ/L` from a separation and the factor `1/L`.
+    fn state_to_coef(state: Self::State, factor: Self::Factor) -> Self::Coef;
+    /// `√(Σ dᵢ²)` of a state vector: the exact length of a separation (rounded down in
+    /// fixed point, saturating).
+    fn norm<const D: usize>(d: &[Self::State; D]) -> Self::State;
+    /// `Σ dᵢ²` in the state format (saturating in fixed point): the squared length the
+    /// linearised kernel needs.
+    fn square_sum<const D: usize>(d: &[Self::State; D]) -> Self::State;
+    /// `a/b` as a fraction in `[−4, 4)` for `b > 0` (rounded toward zero, saturating);
+    /// 0 when `b ≤ 0`: the components of a unit axis.
+    fn ratio(a: Self::State, b: Self::State) -> Self::Coef;
 }
 
 #[cfg(test)]
