@@ -398,15 +398,6 @@ pub(crate) const fn non_negative(value: f64, parameter: Parameter) -> Result<f64
     check(value, parameter, Bound::NonNegative)
 }
 
-/// `value`, if it is finite.
-pub(crate) const fn finite(value: f64, parameter: Parameter) -> Result<f64, Error> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(Error::NotFinite { parameter })
-    }
-}
-
 /// `?` for `const fn`, where the `Try` trait is not available.
 macro_rules! tri {
     ($e:expr) => {

@@ -40,7 +40,10 @@ use crate::scalar::Scalar;
 pub fn respond<S: Scalar>(gains: &S::Gains, extension: S::State, relative: S::State) -> S::State {
     S::state_sub(
         S::STATE_ZERO,
-        S::state_add(S::spring_term(gains, extension), S::damping_term(gains, relative)),
+        S::state_add(
+            S::spring_term(gains, extension),
+            S::damping_term(gains, relative),
+        ),
     )
 }
 

@@ -61,10 +61,13 @@
 
 mod batch;
 mod error;
+pub mod kernel;
+pub mod length;
 mod math;
 mod motion;
 mod rest;
 pub mod scalar;
+pub mod scene;
 mod start;
 mod tuning;
 mod value;

@@ -17,7 +17,6 @@
 
 use core::f64::consts::{LN_2, PI};
 
-
 /// `ln 2` split so that `k·LN2_HI` is exact for `|k| < 2^11` (the low 32 bits of its
 /// mantissa are zero), and `LN2_LO` the next 53 bits of the true `ln 2` (not of its
 /// rounded `f64`, which is off by 2.3e−17: times `k = 1000` that alone would be 200 ulp):
@@ -187,7 +186,7 @@ pub const fn sqrt(x: f64) -> f64 {
     r * scale
 }
 
-#[cfg(all(test, feature = "libm"))]
+#[cfg(test)]
 mod tests {
     use super::*;
 

@@ -349,7 +349,9 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
             let Some(v) = saturate(velocity[i]) else {
                 return;
             };
-            u[i] = self.start.clamp(self.start.step_velocity_unchecked(self.offset[i], v));
+            u[i] = self
+                .start
+                .clamp(self.start.step_velocity_unchecked(self.offset[i], v));
         }
         self.step_velocity = u;
         self.at_rest = false;
@@ -551,7 +553,10 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn velocity(&self) -> [S; D] {
         let mut v = [S::ZERO; D];
-        for (v, (x, u)) in v.iter_mut().zip(self.offset.iter().zip(&self.step_velocity)) {
+        for (v, (x, u)) in v
+            .iter_mut()
+            .zip(self.offset.iter().zip(&self.step_velocity))
+        {
             *v = self.start.velocity(*x, *u);
         }
         v

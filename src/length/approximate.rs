@@ -1,13 +1,14 @@
 //! micromath's approximate inverse square root: no root, no division.
 
-use super::{LengthKernel, Sealed, scaled};
+use super::{LengthKernel, Sealed};
 use crate::scalar::Scalar;
 use micromath::F32Ext;
 
 /// `r ≈ 1/√(d·d)` from micromath's bit trick (`0x5f37_5a86 − bits/2`, no refinement), then
-/// `x = (d·d)·r − L` and `n = d·r`. Measured relative error of `r`: 3.4 % at worst (the
-/// research note behind DESIGN.md), which scales the stiffness of a stretched spring by
-/// up to that much: fast, and a different spring. `f32` only.
+/// `x = (d·d)·r − L` and `n = d·r`. The relative error of `r` is 3.4 % at worst
+/// (`cargo test --release --test length_kernels -- --nocapture` scans it), which scales
+/// the stiffness of a stretched spring by up to that much: fast, and a different spring.
+/// `f32` only.
 ///
 /// ```
 /// use stiffspring::length::{Approximate, LengthKernel};
@@ -37,7 +38,7 @@ pub struct ApproximateNewton;
 impl Sealed for Approximate {}
 impl Sealed for ApproximateNewton {}
 
-/// Shared body: `newton` selects the refined variant at compile time.
+/// Shared body: `NEWTON` selects the refined variant at compile time.
 #[inline(always)]
 fn measure<const D: usize, const NEWTON: bool>(d: &[f32; D], rest: f32) -> (f32, [f32; D]) {
     let s = <f32 as Scalar>::dot(d, d);
@@ -47,41 +48,30 @@ fn measure<const D: usize, const NEWTON: bool>(d: &[f32; D], rest: f32) -> (f32,
     if NEWTON {
         r *= 1.5 - 0.5 * s * r * r;
     }
-    (s * r - rest, scaled(d, r))
+    (s * r - rest, d.map(|d| d * r))
 }
 
-impl LengthKernel<f32> for Approximate {
-    type Rest = f32;
-    const NAME: &'static str = "micromath";
+macro_rules! approximate_kernel {
+    ($K:ty, $name:literal, $newton:literal) => {
+        impl LengthKernel<f32> for $K {
+            type Rest = f32;
+            const NAME: &'static str = $name;
 
-    fn rest(length: f64) -> Self::Rest {
-        <f32 as Scalar>::from_f64(length)
-    }
+            fn rest(length: f32) -> Self::Rest {
+                length
+            }
 
-    fn rest_length(rest: &Self::Rest) -> f64 {
-        *rest as f64
-    }
+            fn rest_length(rest: &Self::Rest) -> f32 {
+                *rest
+            }
 
-    #[inline(always)]
-    fn measure<const D: usize>(d: &[f32; D], rest: &Self::Rest) -> (f32, [f32; D]) {
-        measure::<D, false>(d, *rest)
-    }
+            #[inline(always)]
+            fn measure<const D: usize>(d: &[f32; D], rest: &Self::Rest) -> (f32, [f32; D]) {
+                measure::<D, $newton>(d, *rest)
+            }
+        }
+    };
 }
 
-impl LengthKernel<f32> for ApproximateNewton {
-    type Rest = f32;
-    const NAME: &'static str = "micromath+newton";
-
-    fn rest(length: f64) -> Self::Rest {
-        <f32 as Scalar>::from_f64(length)
-    }
-
-    fn rest_length(rest: &Self::Rest) -> f64 {
-        *rest as f64
-    }
-
-    #[inline(always)]
-    fn measure<const D: usize>(d: &[f32; D], rest: &Self::Rest) -> (f32, [f32; D]) {
-        measure::<D, true>(d, *rest)
-    }
-}
+approximate_kernel!(Approximate, "micromath", false);
+approximate_kernel!(ApproximateNewton, "micromath+newton", true);

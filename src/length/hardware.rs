@@ -6,7 +6,7 @@
 //! `hw-sqrt` feature on a hard-float ARM target.
 #![allow(unsafe_code)]
 
-use super::{LengthKernel, Sealed, scaled};
+use super::{LengthKernel, Sealed};
 use crate::scalar::Scalar;
 
 core::arch::global_asm!(
@@ -43,7 +43,7 @@ fn vsqrt(x: f32) -> f32 {
 /// ```ignore
 /// use stiffspring::length::HardwareSqrt;
 /// use stiffspring::scene::{Scene, SceneConfig};
-/// let rope = Scene::<f32, 2, 16, 15, HardwareSqrt>::new(SceneConfig::new(1.0 / 240.0)?)?;
+/// let rope = Scene::<f32, 2, 16, 15, HardwareSqrt>::new(SceneConfig::new(1.0 / 240.0)?);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -55,18 +55,18 @@ impl LengthKernel<f32> for HardwareSqrt {
     type Rest = f32;
     const NAME: &'static str = "vsqrt";
 
-    fn rest(length: f64) -> Self::Rest {
-        <f32 as Scalar>::from_f64(length)
+    fn rest(length: f32) -> Self::Rest {
+        length
     }
 
-    fn rest_length(rest: &Self::Rest) -> f64 {
-        *rest as f64
+    fn rest_length(rest: &Self::Rest) -> f32 {
+        *rest
     }
 
     #[inline(always)]
     fn measure<const D: usize>(d: &[f32; D], rest: &Self::Rest) -> (f32, [f32; D]) {
         let length = vsqrt(<f32 as Scalar>::dot(d, d));
-        let inverse = super::reciprocal_or_zero!(length, f32);
-        (length - rest, scaled(d, inverse))
+        let inverse = if length > 0.0 { 1.0 / length } else { 0.0 };
+        (length - rest, d.map(|d| d * inverse))
     }
 }

@@ -1,6 +1,6 @@
 //! The linearised extension: no root, no division.
 
-use super::{LengthKernel, Sealed, scaled};
+use super::{LengthKernel, Sealed};
 use crate::scalar::Scalar;
 
 /// `x ≈ (d·d − L²)/(2L)` along `n ≈ d/L`.
@@ -8,7 +8,7 @@ use crate::scalar::Scalar;
 /// With `|d| = L + x`, `d·d − L² = 2Lx + x²`, so the extension is off by `x²/(2L)`: a
 /// relative error of `x/(2L)`, 1 % at 2 % stretch. The axis has length `|d|/L = 1 + x/L`.
 /// Good for stiff networks that stay near their rest lengths (ropes, jelly); wrong for
-/// large stretches. `1/L`, `1/(2L)` and `L²` are precomputed.
+/// large stretches. `1/L`, `1/(2L)` and `L²` are precomputed, so it needs `L > 0`.
 ///
 /// ```
 /// use stiffspring::length::{LengthKernel, Linearised};
@@ -24,7 +24,7 @@ pub struct Linearised;
 
 impl Sealed for Linearised {}
 
-/// `L²`, `1/(2L)` and `1/L` for one spring, in the position format.
+/// `L`, `L²`, `1/(2L)` and `1/L` for one spring.
 ///
 /// ```
 /// use stiffspring::length::{LengthKernel, Linearised};
@@ -33,33 +33,40 @@ impl Sealed for Linearised {}
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct LinearisedRest<S> {
+pub struct LinearisedRest<S: Scalar> {
     length: S,
-    square: S,
-    inverse_twice: S,
-    inverse: S,
+    square: S::State,
+    inverse_twice: S::Factor,
+    inverse: S::Factor,
 }
 
 impl<S: Scalar> LengthKernel<S> for Linearised {
     type Rest = LinearisedRest<S>;
     const NAME: &'static str = "linearised";
+    const ZERO_REST: bool = false;
 
-    fn rest(length: f64) -> Self::Rest {
+    fn rest(length: S) -> Self::Rest {
+        let l = length.to_f64();
+        let inverse = |v: f64| if v > 0.0 { 1.0 / v } else { 0.0 };
         LinearisedRest {
-            length: S::from_f64(length),
-            square: S::from_f64(length * length),
-            inverse_twice: S::from_f64(0.5 / length),
-            inverse: S::from_f64(1.0 / length),
+            length,
+            square: S::square_sum(&[length.widen()]),
+            inverse_twice: S::factor(inverse(2.0 * l)),
+            inverse: S::factor(inverse(l)),
         }
     }
 
-    fn rest_length(rest: &Self::Rest) -> f64 {
-        rest.length.to_f64()
+    fn rest_length(rest: &Self::Rest) -> S {
+        rest.length
     }
 
     #[inline(always)]
-    fn measure<const D: usize>(d: &[S; D], rest: &Self::Rest) -> (S, [S; D]) {
-        let excess = S::dot(d, d).sub(rest.square);
-        (excess.mul(rest.inverse_twice), scaled(d, rest.inverse))
+    fn measure<const D: usize>(d: &[S::State; D], rest: &Self::Rest) -> (S::State, [S::Coef; D]) {
+        let excess = S::state_sub(S::square_sum(d), rest.square);
+        let mut n = [S::coef(0.0); D];
+        for (n, d) in n.iter_mut().zip(d) {
+            *n = S::state_to_coef(*d, rest.inverse);
+        }
+        (S::scale(excess, rest.inverse_twice), n)
     }
 }

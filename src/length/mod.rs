@@ -5,25 +5,26 @@
 //! the division in that formula are most of a spring's cost on a microcontroller, so the
 //! kernel is chosen per scene, at compile time, as a type parameter:
 //!
-//! | kernel | extension | axis | cost | error |
-//! |---|---|---|---|---|
-//! | [`Exact`] | `√(d·d) − L` | `d/|d|` | a root and a division | rounding |
-//! | `Approximate` (`micromath`, f32) | `(d·d)·r − L` | `d·r` | no root, no division | ~3.4 % in `r` |
-//! | `ApproximateNewton` (`micromath`, f32) | as above, `r` refined by one Newton step | | 4 multiplies more | ~0.2 % |
-//! | `HardwareSqrt` (`hw-sqrt`, Cortex-M4F/M7/M33 only) | `vsqrt.f32` | `d/|d|` | one `vsqrt`, one `vdiv` | rounding |
-//! | [`Linearised`] | `(d·d − L²)/(2L)` | `d/L` | no root, no division | second order in `x/L` |
+//! | kernel | extension | axis | cost | error | backends |
+//! |---|---|---|---|---|---|
+//! | [`Exact`] (the default) | `√(d·d) − L` | `d/|d|` | a root and a division | rounding | all |
+//! | [`Linearised`] | `(d·d − L²)/(2L)` | `d/L` | no root, no division | second order in `x/L` | all |
+//! | `Approximate` (`micromath`) | `(d·d)·r − L` | `d·r` | no root, no division | ~3.4 % in `r` | `f32` |
+//! | `ApproximateNewton` (`micromath`) | as above, `r` refined by one Newton step | | 4 multiplies more | ~0.2 % | `f32` |
+//! | `HardwareSqrt` (`hw-sqrt`, Cortex-M4F/M7/M33 only) | `vsqrt.f32` | `d/|d|` | one `vsqrt`, one `vdiv` | rounding | `f32` |
 //!
-//! where `r ≈ 1/√(d·d)` is micromath's inverse square root. Measure the trade in
-//! `cargo bench` and the firmware `cost` harness rather than guessing.
+//! where `r ≈ 1/√(d·d)` is micromath's inverse square root. The instruction counts are
+//! measured by the firmware cost harness (see the README).
 //!
 //! **Coincident ends.** When `d = 0` the axis is undefined. Every kernel then returns a
 //! zero axis, so the spring applies nothing that step (no NaN, no division by zero); it
-//! acts again as soon as the ends separate.
+//! acts again as soon as the ends separate. With a zero rest length (a drag handle: a
+//! particle pulled to a point) that is exactly where the spring is satisfied.
 //!
-//! In fixed point, [`Exact`] takes the root of the exact double-width sum of squares with
-//! the `fixed` crate's `sqrt`, so it holds for separations across the whole range.
-//! [`Linearised`] squares in the position format, so in `I16F16` it needs `|d|` below
-//! about 181 units (it saturates, never wraps, beyond).
+//! In fixed point, [`Exact`] takes the root of the exact double-width sum of squares of
+//! the wide state, so it holds for separations across the whole range. [`Linearised`]
+//! squares in the state format, so in `I16F16` it needs `|d|` below about 2 896 units
+//! (it saturates, never wraps, beyond).
 
 #[cfg(feature = "micromath")]
 mod approximate;
@@ -37,9 +38,9 @@ pub use approximate::{Approximate, ApproximateNewton};
 pub use exact::Exact;
 #[cfg(all(feature = "hw-sqrt", target_arch = "arm", target_abi = "eabihf"))]
 pub use hardware::HardwareSqrt;
-pub use linearised::Linearised;
+pub use linearised::{Linearised, LinearisedRest};
 
-use crate::scalar::Scalar;
+use crate::scalar::{MaybeFormat, Scalar};
 use core::fmt::Debug;
 
 mod sealed {
@@ -59,47 +60,25 @@ pub(crate) use sealed::Sealed;
 /// ```
 pub trait LengthKernel<S: Scalar>: Sealed + Copy + Debug + Default + 'static {
     /// What the kernel precomputes from a spring's rest length at set-up.
-    type Rest: Copy + Debug + Default + PartialEq + crate::scalar::MaybeFormat;
+    type Rest: Copy + Debug + Default + PartialEq + MaybeFormat;
     /// A short name for tables.
     const NAME: &'static str;
-    /// True when the rest value may be zero or negative (a rest *angle*); distance
-    /// springs need a positive rest length.
+    /// True when the rest value may be negative (a rest *angle*); distance springs need
+    /// a rest length of zero or more.
     const SIGNED_REST: bool = false;
+    /// True when the kernel takes a rest length of exactly zero (a drag handle).
+    const ZERO_REST: bool = true;
     /// Precomputes the per-spring data for rest length `length` (set-up only; the scene
-    /// validates that `length` is finite and positive).
-    fn rest(length: f64) -> Self::Rest;
+    /// validates it first).
+    fn rest(length: S) -> Self::Rest;
     /// The rest length back, for reporting.
-    fn rest_length(rest: &Self::Rest) -> f64;
-    /// The extension and the (unit, or approximately unit) axis for the separation `d`.
-    fn measure<const D: usize>(d: &[S; D], rest: &Self::Rest) -> (S, [S; D]);
-}
-
-/// `1/length`, or 0 when the length is 0: coincident ends, or ends so close that `d·d`
-/// underflowed, get a zero axis (the spring applies nothing) instead of `0·∞ = NaN` or a
-/// huge `d/MIN_POSITIVE`. A comparison and a select, not `max` (a library call,
-/// `fmaxf`, on a Cortex-M4F, which has no `vmax`).
-#[cfg(any(
-    feature = "libm",
-    all(feature = "hw-sqrt", target_arch = "arm", target_abi = "eabihf")
-))]
-macro_rules! reciprocal_or_zero {
-    ($length:expr, $F:ty) => {{
-        let length: $F = $length;
-        if length > 0.0 { 1.0 / length } else { 0.0 }
-    }};
-}
-#[cfg(any(
-    feature = "libm",
-    all(feature = "hw-sqrt", target_arch = "arm", target_abi = "eabihf")
-))]
-pub(crate) use reciprocal_or_zero;
-
-/// `d·s` for every component: the axis from the separation and a reciprocal length.
-#[inline(always)]
-pub(crate) fn scaled<S: Scalar, const D: usize>(d: &[S; D], s: S) -> [S; D] {
-    let mut n = [S::ZERO; D];
-    for (n, d) in n.iter_mut().zip(d) {
-        *n = d.mul(s);
+    fn rest_length(rest: &Self::Rest) -> S;
+    /// The rest data of the same spring with its ends swapped: the same for a distance,
+    /// negated for a signed angle.
+    fn flipped(rest: &Self::Rest) -> Self::Rest {
+        *rest
     }
-    n
+    /// The extension (in the state format) and the unit (or approximately unit) axis for
+    /// the separation `d`.
+    fn measure<const D: usize>(d: &[S::State; D], rest: &Self::Rest) -> (S::State, [S::Coef; D]);
 }

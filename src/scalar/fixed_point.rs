@@ -93,6 +93,7 @@ macro_rules! fixed_backend {
             const NAME: &'static str = $name;
             const RESOLUTION: f64 = 1.0 / (1u64 << <$S>::FRAC_NBITS) as f64;
             const MAX: f64 = (1u64 << (<$S>::INT_NBITS - 1)) as f64;
+            const NETWORK_MAX: f64 = <Self as Scalar>::MAX;
             const STATE_MAX: f64 = {
                 // 2^(state integer bits − 1), written out: the state has
                 // FRAC_NBITS + GUARD fractional bits.
@@ -154,10 +155,14 @@ macro_rules! fixed_backend {
                 if value.is_nan() {
                     return 0;
                 }
-                let scaled = value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64
-                    * 4_294_967_296.0;
+                let scaled =
+                    value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64 * 4_294_967_296.0;
                 // `as` saturates at the ends of the integer type.
-                let r = if scaled >= 0.0 { scaled + 0.5 } else { scaled - 0.5 };
+                let r = if scaled >= 0.0 {
+                    scaled + 0.5
+                } else {
+                    scaled - 0.5
+                };
                 r as $State
             }
             fn state_to_f64(state: $State) -> f64 {
@@ -191,6 +196,10 @@ macro_rules! fixed_backend {
                 // most STATE_MAX/2 by construction, so 2b does not overflow.
                 (state.wrapping_add(bound) as $StateU) <= (bound as $StateU).wrapping_mul(2)
             }
+            #[inline(always)]
+            fn state_clamp(state: $State, _bound: $State) -> $State {
+                state
+            }
             #[inline]
             fn coef(value: f64) -> Self::Coef {
                 // `saturating_from_num` panics on NaN; the library never does.
@@ -222,7 +231,9 @@ macro_rules! fixed_backend {
             }
             #[inline(always)]
             fn mul(self, rhs: Self) -> Self {
-                <$S>::from_bits($narrow_self(self.to_bits() as $Wide * rhs.to_bits() as $Wide))
+                <$S>::from_bits($narrow_self(
+                    self.to_bits() as $Wide * rhs.to_bits() as $Wide,
+                ))
             }
             #[inline(always)]
             fn mul_coef(self, coef: Self::Coef) -> Self {
@@ -251,8 +262,8 @@ macro_rules! fixed_backend {
             #[inline(always)]
             fn state_to_coef(state: $State, factor: Self::Factor) -> Self::Coef {
                 // The state's unit is 2^(FRAC + guard), a fraction's 2^(Coef FRAC).
-                let shift = factor.shift + (<$S>::FRAC_NBITS + $guard) as i32
-                    - <$Coef>::FRAC_NBITS as i32;
+                let shift =
+                    factor.shift + (<$S>::FRAC_NBITS + $guard) as i32 - <$Coef>::FRAC_NBITS as i32;
                 let v = $arith::mul_shift::<false>(state, factor.mantissa, shift);
                 <$Coef>::from_bits(v.clamp(<$Half>::MIN as $State, <$Half>::MAX as $State) as $Half)
             }
@@ -365,8 +376,12 @@ impl WideGeometry for i128 {
     }
 }
 
-fixed_backend!(I16F16, i32, i64, u64, i32, I3F29, i64, narrow, narrow_q29, narrow_q16, 24, "I16F16");
-fixed_backend!(I32F32, i64, i128, u128, i64, I3F61, i128, broad, narrow_q61, narrow_q32, 32, "I32F32");
+fixed_backend!(
+    I16F16, i32, i64, u64, i32, I3F29, i64, narrow, narrow_q29, narrow_q16, 24, "I16F16"
+);
+fixed_backend!(
+    I32F32, i64, i128, u128, i64, I3F61, i128, broad, narrow_q61, narrow_q32, 32, "I32F32"
+);
 
 #[cfg(test)]
 mod tests {
@@ -383,7 +398,10 @@ mod tests {
         assert_eq!(I16F16::narrow(i64::MAX), I16F16::MAX);
         assert_eq!(I16F16::narrow(i64::MIN), I16F16::MIN);
         assert_eq!(I32F32::narrow(i128::MIN), I32F32::MIN);
-        assert_eq!(I16F16::state_to_f64(I16F16::state_from_f64(-1234.5)), -1234.5);
+        assert_eq!(
+            I16F16::state_to_f64(I16F16::state_from_f64(-1234.5)),
+            -1234.5
+        );
         assert_eq!(I32F32::state_to_f64(I32F32::state_from_f64(1e9)), 1e9);
     }
 
@@ -418,7 +436,10 @@ mod tests {
         let a = I16F16::from_num(1.5);
         let b = I16F16::from_num(-2.25);
         assert_eq!(a.mul(b), I16F16::from_num(-3.375));
-        assert_eq!(I16F16::from_bits(-1).mul(I16F16::from_num(0.5)), I16F16::ZERO);
+        assert_eq!(
+            I16F16::from_bits(-1).mul(I16F16::from_num(0.5)),
+            I16F16::ZERO
+        );
         assert_eq!(I16F16::MAX.mul(I16F16::MAX), I16F16::MAX);
         let d = [I16F16::from_num(3), I16F16::from_num(4)];
         assert_eq!(I16F16::dot(&d, &d), I16F16::from_num(25));

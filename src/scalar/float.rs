@@ -18,8 +18,8 @@ pub struct FloatGains<F> {
 
 macro_rules! float_backend {
     (
-        $F:ty, $name:literal, $max_exponent:literal, $state_exponent:literal, $min_gain:expr,
-        $sqrt:path
+        $F:ty, $name:literal, $max_exponent:literal, $state_exponent:literal,
+        $network_exponent:literal, $min_gain:expr, $sqrt:path
     ) => {
         impl Sealed for $F {}
 
@@ -37,6 +37,9 @@ macro_rules! float_backend {
             // 2^e, written out because `powi` is not in `core`.
             const MAX: f64 = f64::from_bits(((1023 + $max_exponent) as u64) << 52);
             const STATE_MAX: f64 = f64::from_bits(((1023 + $state_exponent) as u64) << 52);
+            // Σ dᵢ² of three separations up to 2·bound must stay below MAX:
+            // 3·(2^(e+1))² < 2^(2e+4) ≤ 2^127 (f32) or 2^1023 (f64).
+            const NETWORK_MAX: f64 = f64::from_bits(((1023 + $network_exponent) as u64) << 52);
 
             #[inline]
             fn from_f64(value: f64) -> Self {
@@ -114,6 +117,19 @@ macro_rules! float_backend {
             fn within(state: Self, bound: Self) -> bool {
                 state.abs() <= bound
             }
+            #[inline(always)]
+            fn state_clamp(state: Self, bound: Self) -> Self {
+                // Written so that NaN fails every comparison and lands on 0.
+                if state.abs() <= bound {
+                    state
+                } else if state > 0.0 {
+                    bound
+                } else if state < 0.0 {
+                    -bound
+                } else {
+                    0.0
+                }
+            }
             #[inline]
             fn coef(value: f64) -> Self::Coef {
                 Self::from_f64(value)
@@ -187,5 +203,5 @@ macro_rules! float_backend {
 
 // Positions up to 2^64 (f32) and 2^500 (f64); states up to 2^120 and 2^1000, which leaves
 // 2^56 and 2^500 for the transient growth of a spring (see `Tuning::growth`).
-float_backend!(f32, "f32", 64, 120, f32::MIN_POSITIVE, libm::sqrtf);
-float_backend!(f64, "f64", 500, 1000, f64::MIN_POSITIVE, libm::sqrt);
+float_backend!(f32, "f32", 64, 120, 60, f32::MIN_POSITIVE, libm::sqrtf);
+float_backend!(f64, "f64", 500, 1000, 500, f64::MIN_POSITIVE, libm::sqrt);

@@ -136,6 +136,11 @@ pub trait Scalar:
     const MAX: f64;
     /// The largest magnitude the internal state holds (fixed point saturates there).
     const STATE_MAX: f64;
+    /// The largest magnitude of positions and step velocities in a
+    /// [`Scene`](crate::scene::Scene): small enough that a distance spring's squared
+    /// length stays finite (`2⁶⁰` for `f32`, `2⁵⁰⁰` for `f64`); [`Scalar::MAX`] in fixed
+    /// point, which saturates anyway.
+    const NETWORK_MAX: f64;
 
     /// Converts from `f64`, rounding to nearest and saturating at the ends of the range
     /// (NaN becomes zero). Set-up only.
@@ -168,6 +173,10 @@ pub trait Scalar:
     /// `|state| ≤ bound` for a non-negative `bound` (in fixed point one add and one
     /// unsigned comparison).
     fn within(state: Self::State, bound: Self::State) -> bool;
+    /// `state` limited to `[−bound, bound]`, NaN mapped to 0: the safety net that keeps
+    /// an unstable float network finite. The identity in fixed point, whose arithmetic
+    /// saturates.
+    fn state_clamp(state: Self::State, bound: Self::State) -> Self::State;
 
     /// The spring term `C_k·x`, rounded toward zero in fixed point (a slightly weaker
     /// spring, which conserves an undamped spring's energy: each half of a step is a
@@ -243,7 +252,11 @@ mod tests {
             let (k2, d2) = S::gains_to_f64(&g);
             // One shared exponent: each gain is exact to 2^−29 of the larger one.
             let tolerance = k.max(d) * 2f64.powi(-29);
-            assert!((k2 - k).abs() <= tolerance && (d2 - d).abs() <= tolerance, "{}", S::NAME);
+            assert!(
+                (k2 - k).abs() <= tolerance && (d2 - d).abs() <= tolerance,
+                "{}",
+                S::NAME
+            );
         }
         assert_eq!(S::from_f64(f64::NAN).to_f64(), 0.0);
     }

@@ -36,25 +36,30 @@ pub struct Angle;
 impl Sealed for Angle {}
 
 impl<S: Scalar> LengthKernel<S> for Angle {
-    type Rest = S;
+    type Rest = S::State;
     const NAME: &'static str = "angle";
     const SIGNED_REST: bool = true;
 
-    fn rest(length: f64) -> Self::Rest {
-        S::from_f64(length)
+    fn rest(angle: S) -> Self::Rest {
+        angle.widen()
     }
 
-    fn rest_length(rest: &Self::Rest) -> f64 {
-        rest.to_f64()
+    fn rest_length(rest: &Self::Rest) -> S {
+        S::narrow(*rest)
+    }
+
+    fn flipped(rest: &Self::Rest) -> Self::Rest {
+        S::state_sub(S::STATE_ZERO, *rest)
     }
 
     #[inline(always)]
-    fn measure<const D: usize>(d: &[S; D], rest: &Self::Rest) -> (S, [S; D]) {
-        let mut axis = [S::ZERO; D];
+    fn measure<const D: usize>(d: &[S::State; D], rest: &Self::Rest) -> (S::State, [S::Coef; D]) {
+        let mut axis = [S::coef(0.0); D];
         if let Some(first) = axis.first_mut() {
-            *first = S::ONE;
+            *first = S::coef(1.0);
         }
-        (d.first().copied().unwrap_or(S::ZERO).sub(*rest), axis)
+        let first = d.first().copied().unwrap_or(S::STATE_ZERO);
+        (S::state_sub(first, *rest), axis)
     }
 }
 
@@ -74,26 +79,24 @@ pub struct WrappedAngle;
 
 impl Sealed for WrappedAngle {}
 
-/// `x − 2π·⌊(x + π)/2π⌋`, the representative of `x` in `[−π, π)`.
+/// `x − 2π·⌊(x + π)/2π⌋`, the representative of `x` in `[−π, π)`, on the state.
 trait Wrap: Scalar {
-    fn wrap(self) -> Self;
+    fn wrap(state: Self::State) -> Self::State;
 }
 
-#[cfg(feature = "libm")]
 impl Wrap for f32 {
     #[inline(always)]
-    fn wrap(self) -> Self {
+    fn wrap(x: f32) -> f32 {
         use core::f32::consts::{PI, TAU};
-        self - TAU * libm::floorf((self + PI) * (1.0 / TAU))
+        x - TAU * libm::floorf((x + PI) * (1.0 / TAU))
     }
 }
 
-#[cfg(feature = "libm")]
 impl Wrap for f64 {
     #[inline(always)]
-    fn wrap(self) -> Self {
+    fn wrap(x: f64) -> f64 {
         use core::f64::consts::{PI, TAU};
-        self - TAU * libm::floor((self + PI) * (1.0 / TAU))
+        x - TAU * libm::floor((x + PI) * (1.0 / TAU))
     }
 }
 
@@ -102,13 +105,12 @@ macro_rules! fixed_wrap {
     ($S:ty) => {
         impl Wrap for $S {
             #[inline(always)]
-            fn wrap(self) -> Self {
-                // On the raw integers: the period is 2π rounded to the format, so the
-                // wrap is exact arithmetic modulo that period.
-                let period = <$S>::TAU.to_bits();
+            fn wrap(x: Self::State) -> Self::State {
+                // On the raw state integers: the period is 2π rounded to the state's
+                // format, so the wrap is exact arithmetic modulo that period.
+                let period = <$S>::state_from_f64(core::f64::consts::TAU);
                 let half = period / 2;
-                let bits = self.to_bits().saturating_add(half).rem_euclid(period) - half;
-                <$S>::from_bits(bits)
+                x.saturating_add(half).rem_euclid(period) - half
             }
         }
     };
@@ -121,22 +123,26 @@ fixed_wrap!(fixed::types::I32F32);
 
 #[allow(private_bounds)]
 impl<S: Wrap> LengthKernel<S> for WrappedAngle {
-    type Rest = S;
+    type Rest = S::State;
     const NAME: &'static str = "wrapped angle";
     const SIGNED_REST: bool = true;
 
-    fn rest(length: f64) -> Self::Rest {
-        S::from_f64(length)
+    fn rest(angle: S) -> Self::Rest {
+        angle.widen()
     }
 
-    fn rest_length(rest: &Self::Rest) -> f64 {
-        rest.to_f64()
+    fn rest_length(rest: &Self::Rest) -> S {
+        S::narrow(*rest)
+    }
+
+    fn flipped(rest: &Self::Rest) -> Self::Rest {
+        S::state_sub(S::STATE_ZERO, *rest)
     }
 
     #[inline(always)]
-    fn measure<const D: usize>(d: &[S; D], rest: &Self::Rest) -> (S, [S; D]) {
+    fn measure<const D: usize>(d: &[S::State; D], rest: &Self::Rest) -> (S::State, [S::Coef; D]) {
         let (x, axis) = <Angle as LengthKernel<S>>::measure(d, rest);
-        (x.wrap(), axis)
+        (S::wrap(x), axis)
     }
 }
 
@@ -149,12 +155,13 @@ impl<S: Wrap> LengthKernel<S> for WrappedAngle {
 /// use stiffspring::Tuning;
 ///
 /// // A clock spring: a flywheel on a pinned arbor, wound by three turns.
-/// let mut clock = AngularScene::<f64, 2, 1>::new(SceneConfig::new(1e-3)?)?;
+/// let dt = 1e-3;
+/// let mut clock = AngularScene::<f64, 2, 1>::new(SceneConfig::new(dt)?);
 /// let arbor = clock.add_pinned([0.0])?;
 /// let wheel = clock.add_particle([3.0 * TAU], 0.01)?; // inertia 0.01 kg·m²
-/// clock.add_spring(arbor, wheel, 0.0, Tuning::from_frequency(2.0, 0.7, 1e-3)?)?;
+/// clock.add_spring(arbor, wheel, 0.0, &Tuning::from_frequency(2.0, 0.7, dt)?)?;
 /// for _ in 0..3000 {
-///     clock.step();
+///     let _ = clock.step();
 /// }
 /// assert!(clock.position(wheel)?[0].abs() < 1e-3); // unwound all three turns
 /// # Ok::<(), stiffspring::Error>(())

@@ -1,6 +1,8 @@
 //! How a scene is set up: time step, gravity, stepper, limit policy, sleeping.
 
-use crate::error::{Error, Parameter, positive};
+use crate::error::{Error, Parameter, positive, tri};
+use crate::scalar::Scalar;
+use crate::value::check_position;
 
 /// The order in which a scene applies its springs; see the [scene docs](super).
 ///
@@ -62,16 +64,15 @@ impl SleepThreshold {
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] with [`Parameter::Threshold`].
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] with [`Parameter::Threshold`].
     ///
     /// ```
     /// assert!(stiffspring::scene::SleepThreshold::new(0.0, 1.0).is_err());
     /// ```
-    pub fn new(velocity: f64, time: f64) -> Result<Self, Error> {
-        Ok(SleepThreshold {
-            velocity: positive(velocity, Parameter::Threshold)?,
-            time: positive(time, Parameter::Threshold)?,
-        })
+    pub const fn new(velocity: f64, time: f64) -> Result<Self, Error> {
+        let velocity = tri!(positive(velocity, Parameter::Threshold));
+        let time = tri!(positive(time, Parameter::Threshold));
+        Ok(SleepThreshold { velocity, time })
     }
 
     /// The velocity threshold, in units per second.
@@ -99,6 +100,11 @@ impl SleepThreshold {
 
 impl Default for SleepThreshold {
     /// A thousandth of a unit per second for half a second (Box2D sleeps after 0.5 s too).
+    ///
+    /// ```
+    /// let t = stiffspring::scene::SleepThreshold::default();
+    /// assert_eq!((t.velocity(), t.time()), (1e-3, 0.5));
+    /// ```
     fn default() -> Self {
         SleepThreshold {
             velocity: 1e-3,
@@ -107,73 +113,78 @@ impl Default for SleepThreshold {
     }
 }
 
-/// Everything a [`Scene`](super::Scene) is built from.
+/// How a scene is set up: its time step, gravity, stepper, limit policy and sleeping.
+///
+/// The scene owns the only `dt`: every spring's [`Tuning`](crate::Tuning) must be sampled
+/// at it ([`Error::TimeStepMismatch`] otherwise). Gravity is in the scene's number type,
+/// like everything that has the unit of its positions.
 ///
 /// ```
 /// use stiffspring::scene::{SceneConfig, Stepper};
 ///
-/// let config = SceneConfig::<2>::new(1.0 / 120.0)?
+/// let config = SceneConfig::<f32, 2>::new(1.0 / 120.0)?
 ///     .gravity([0.0, -9.81])?
-///     .stepper(Stepper::Jacobi)
-///     .no_sleep();
+///     .stepper(Stepper::Jacobi);
 /// assert_eq!(config.dt(), 1.0 / 120.0);
 /// # Ok::<(), stiffspring::Error>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct SceneConfig<const D: usize> {
+pub struct SceneConfig<S: Scalar, const D: usize> {
     pub(crate) dt: f64,
-    pub(crate) gravity: [f64; D],
+    pub(crate) gravity: [S; D],
     pub(crate) stepper: Stepper,
     pub(crate) policy: LimitPolicy,
     pub(crate) sleep: Option<SleepThreshold>,
 }
 
-impl<const D: usize> SceneConfig<D> {
-    /// A scene stepped every `dt` seconds, without gravity, with the Gauss-Seidel
-    /// stepper, the reject policy and the default sleep threshold.
+impl<S: Scalar, const D: usize> SceneConfig<S, D> {
+    /// A scene stepped every `dt` seconds, without gravity, Gauss-Seidel, rejecting
+    /// springs above the network limit, sleeping by [`SleepThreshold::default`].
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] or [`Error::NotPositive`] for `dt`.
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for `dt ≤ 0`.
     ///
     /// ```
-    /// assert!(stiffspring::scene::SceneConfig::<2>::new(-1.0).is_err());
+    /// assert!(stiffspring::scene::SceneConfig::<f32, 2>::new(0.0).is_err());
     /// ```
     pub fn new(dt: f64) -> Result<Self, Error> {
         Ok(SceneConfig {
             dt: positive(dt, Parameter::TimeStep)?,
-            gravity: [0.0; D],
+            gravity: [S::ZERO; D],
             stepper: Stepper::GaussSeidel,
             policy: LimitPolicy::Reject,
             sleep: Some(SleepThreshold::default()),
         })
     }
 
-    /// An external acceleration on every free particle, in units per second squared.
+    /// The same configuration with a constant acceleration on every free particle, in
+    /// units per second².
     ///
     /// # Errors
     ///
-    /// [`Error::NotFinite`] with [`Parameter::Acceleration`].
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] with [`Parameter::Acceleration`].
     ///
     /// ```
-    /// # use stiffspring::scene::SceneConfig;
-    /// assert!(SceneConfig::<2>::new(0.01)?.gravity([0.0, f64::NAN]).is_err());
+    /// use stiffspring::scene::SceneConfig;
+    /// assert!(SceneConfig::<f32, 2>::new(0.01)?.gravity([0.0, f32::NAN]).is_err());
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn gravity(mut self, acceleration: [f64; D]) -> Result<Self, Error> {
-        if acceleration.iter().any(|a| !a.is_finite()) {
-            return Err(Error::NotFinite(Parameter::Acceleration));
+    pub fn gravity(mut self, acceleration: [S; D]) -> Result<Self, Error> {
+        for a in acceleration {
+            check_position(a, Parameter::Acceleration)?;
         }
         self.gravity = acceleration;
         Ok(self)
     }
 
-    /// The stepper.
+    /// The same configuration with another stepper.
     ///
     /// ```
-    /// # use stiffspring::scene::{SceneConfig, Stepper};
-    /// let c = SceneConfig::<1>::new(0.01)?.stepper(Stepper::Jacobi);
+    /// use stiffspring::scene::{SceneConfig, Stepper};
+    /// let c = SceneConfig::<f32, 1>::new(0.01)?.stepper(Stepper::Jacobi);
+    /// # let _ = c;
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn stepper(mut self, stepper: Stepper) -> Self {
@@ -181,11 +192,12 @@ impl<const D: usize> SceneConfig<D> {
         self
     }
 
-    /// The policy for coefficients above the network limit.
+    /// The same configuration with another limit policy.
     ///
     /// ```
-    /// # use stiffspring::scene::{LimitPolicy, SceneConfig};
-    /// let c = SceneConfig::<1>::new(0.01)?.limit_policy(LimitPolicy::Clamp);
+    /// use stiffspring::scene::{LimitPolicy, SceneConfig};
+    /// let c = SceneConfig::<f32, 1>::new(0.01)?.limit_policy(LimitPolicy::Clamp);
+    /// # let _ = c;
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn limit_policy(mut self, policy: LimitPolicy) -> Self {
@@ -193,11 +205,12 @@ impl<const D: usize> SceneConfig<D> {
         self
     }
 
-    /// The sleep threshold.
+    /// The same configuration with another sleep threshold.
     ///
     /// ```
-    /// # use stiffspring::scene::{SceneConfig, SleepThreshold};
-    /// let c = SceneConfig::<1>::new(0.01)?.sleep(SleepThreshold::new(0.1, 1.0)?);
+    /// use stiffspring::scene::{SceneConfig, SleepThreshold};
+    /// let c = SceneConfig::<f32, 1>::new(0.01)?.sleep(SleepThreshold::new(0.1, 1.0)?);
+    /// # let _ = c;
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn sleep(mut self, threshold: SleepThreshold) -> Self {
@@ -205,11 +218,12 @@ impl<const D: usize> SceneConfig<D> {
         self
     }
 
-    /// Never put anything to sleep.
+    /// The same configuration without sleeping: every island is stepped every step.
     ///
     /// ```
-    /// # use stiffspring::scene::SceneConfig;
-    /// let c = SceneConfig::<1>::new(0.01)?.no_sleep();
+    /// use stiffspring::scene::SceneConfig;
+    /// let c = SceneConfig::<f32, 1>::new(0.01)?.no_sleep();
+    /// # let _ = c;
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn no_sleep(mut self) -> Self {
@@ -220,8 +234,7 @@ impl<const D: usize> SceneConfig<D> {
     /// The time step, in seconds.
     ///
     /// ```
-    /// # use stiffspring::scene::SceneConfig;
-    /// assert_eq!(SceneConfig::<1>::new(0.01)?.dt(), 0.01);
+    /// assert_eq!(stiffspring::scene::SceneConfig::<f32, 1>::new(0.01)?.dt(), 0.01);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn dt(&self) -> f64 {

@@ -1,7 +1,14 @@
-//! The safe coefficient for springs that share particles: [`network_limit`], derived
-//! and measured in `STABILITY.md` (`tests/network_limits.rs`).
+//! The safe coefficient for springs that share particles: [`network_limit`], and the
+//! scene's policy for springs above it.
 
-use super::config::Stepper;
+use super::config::{LimitPolicy, Stepper};
+use super::{Kind, Scene};
+use crate::error::Error;
+use crate::length::LengthKernel;
+use crate::scalar::Scalar;
+use crate::tuning::Tuning;
+use crate::value::gains_of;
+use heapless::Vec;
 
 /// The fraction of the worst-case limit the scene accepts (see [`network_limit`]).
 const MARGIN: f64 = 0.75;
@@ -13,8 +20,8 @@ const MARGIN: f64 = 0.75;
 /// A single spring is stable for any `(C_k, C_d)` in `[0, 1]²`. Springs that share a
 /// particle compete: each corrects its own extension and disturbs its neighbours'. The
 /// article's rule of thumb (eq. 29) is `C_max ≈ 1/(n + 1)`, with `n` the largest number of
-/// springs on either free particle of a spring. The stress tests (`tests/network_limits.rs`,
-/// tables in `STABILITY.md`) measured the true limits; this is a rule that holds for
+/// springs on either free particle of a spring. The stress tests (`tests/network_limits.rs`)
+/// measured the true limits; this is a rule that holds for
 /// **every** network with share count `n`, whatever its geometry (the
 /// geometry changes as a network deforms), masses and pinning, and whatever coefficients
 /// its other springs have, each within its own limit:
@@ -52,8 +59,7 @@ const MARGIN: f64 = 0.75;
 ///
 /// which defines `W(n)`: 1 for `n = 2`, 0.8 for 3, ⅔ for 4, 0.36 for 8, `3.1/n` for
 /// large `n` (always above `3/(n + 1)`, three times the article's rule). With one tuning
-/// for all springs Gauss-Seidel tolerates much more (ropes `4/3`, meshes about 1); see
-/// `STABILITY.md` for the cases where Gauss-Seidel flutters slowly whatever the limit.
+/// for all springs Gauss-Seidel tolerates much more (ropes `4/3`, meshes about 1).
 ///
 /// **The margin `¾`** covers what the linear analysis leaves out: the
 /// [length kernels](crate::length) (`Approximate` scales a spring's effective
@@ -126,6 +132,93 @@ fn dyadic(value: f64) -> f64 {
     const SCALE: f64 = (1u32 << 24) as f64;
     // `as` truncates toward zero: for a non-negative value, + ½ makes it round to nearest.
     ((value * SCALE + 0.5) as u32) as f64 / SCALE
+}
+
+/// A hypothetical change to the share counts: one more spring on each `extra` slot, and a
+/// pinned particle that becomes free.
+pub(crate) struct Change {
+    pub(crate) extra: [Option<usize>; 2],
+    pub(crate) freed: Option<usize>,
+}
+
+impl Change {
+    pub(crate) const NONE: Change = Change {
+        extra: [None, None],
+        freed: None,
+    };
+}
+
+impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<S>>
+    Scene<S, D, P, K, L>
+{
+    /// The springs on slot `p` under `change`, if it is (or becomes) free; 0 if pinned
+    /// (pinned ends do not move, so springs meeting there do not compete).
+    pub(crate) fn share_count_of(&self, p: usize, change: &Change) -> u16 {
+        let free = self.particles[p].inverse_mass > 0.0 || change.freed == Some(p);
+        if !free {
+            return 0;
+        }
+        let extra = change.extra.iter().filter(|&&e| e == Some(p)).count() as u16;
+        self.particles[p].springs + extra
+    }
+
+    /// The share count `n` of a spring between slots `a` and `b` under `change`: the
+    /// springs on its busiest free end.
+    pub(crate) fn share_count(&self, a: usize, b: usize, change: &Change) -> u16 {
+        self.share_count_of(a, change)
+            .max(self.share_count_of(b, change))
+    }
+
+    /// The coefficients `(C_k, C_d)` as the policy allows them for share count `degree`,
+    /// and whether they were clamped.
+    pub(crate) fn checked(
+        &self,
+        coefficients: (f64, f64),
+        degree: u16,
+    ) -> Result<((f64, f64), bool), Error> {
+        let limit = network_limit(degree as usize, self.config.stepper);
+        let (ck, cd) = coefficients;
+        // A stored spring's coefficients are the requested ones rounded to the backend's
+        // format (24 significant bits in f32, 30 in fixed point), so a spring tuned
+        // exactly at the limit may read back a hair above it; a relative slack of 1e−6,
+        // far below any stability margin, keeps it accepted.
+        let slack = limit * 1e-6;
+        if ck <= limit + slack && cd <= limit + slack {
+            return Ok(((ck, cd), false));
+        }
+        match self.config.policy {
+            LimitPolicy::Reject => Err(Error::ExceedsNetworkLimit {
+                coefficient: ck.max(cd),
+                limit,
+            }),
+            LimitPolicy::Clamp => Ok(((ck.min(limit), cd.min(limit)), true)),
+        }
+    }
+
+    /// Checks every live spring touching `slots` against its limit under `change`, and
+    /// returns the clamped gains to apply once the change commits (empty under
+    /// [`LimitPolicy::Reject`], which fails instead).
+    pub(crate) fn check_neighbours(
+        &self,
+        slots: &[usize],
+        change: &Change,
+    ) -> Result<Vec<(u16, S::Gains), K>, Error> {
+        let mut clamps: Vec<(u16, S::Gains), K> = Vec::new();
+        for (i, s) in self.springs.iter().enumerate() {
+            let (a, b) = (s.a as usize, s.b as usize);
+            if s.kind == Kind::Dead || !(slots.contains(&a) || slots.contains(&b)) {
+                continue;
+            }
+            let degree = self.share_count(a, b, change);
+            let ((ck, cd), clamped) = self.checked(S::gains_to_f64(&s.gains), degree)?;
+            if clamped {
+                let tuning = Tuning::from_coefficients_extended(ck, cd, self.config.dt)?;
+                // At most K springs: always room.
+                let _ = clamps.push((i as u16, gains_of::<S>(&tuning)?));
+            }
+        }
+        Ok(clamps)
+    }
 }
 
 #[cfg(test)]

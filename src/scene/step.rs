@@ -4,7 +4,8 @@
 //! or branches on a rare case: the schedule lists only awake particles and springs, split
 //! by kind, so each loop body is the same for every element it visits.
 
-use super::{Scene, Spring, Stepper};
+use super::{Scene, SceneMotion, Spring, Stepper};
+use crate::kernel;
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
 
@@ -21,66 +22,86 @@ fn adds_in_hardware<S: Scalar>() -> bool {
 
 /// `x += u` for one particle, within `bound` (see `integrate_positions`).
 #[inline(always)]
-fn integrate<S: Scalar, const D: usize>(x: &mut [S; D], u: &mut [S; D], bound: S) {
+fn integrate<S: Scalar, const D: usize>(
+    x: &mut [S::State; D],
+    u: &mut [S::State; D],
+    bound: S::State,
+) {
     if S::RESOLUTION > 0.0 {
-        // Fixed point saturates by itself: the bound is its whole range.
+        // Fixed point saturates by itself.
         for k in 0..D {
-            x[k] = x[k].add(u[k]);
+            x[k] = S::state_add(x[k], u[k]);
         }
         return;
     }
     if adds_in_hardware::<S>() {
-        // The common case first: if the sum of every |u| and |x + u| is within the
-        // bound (and so not NaN), no clamp below could change anything, and one
-        // comparison replaces one per value. The result is the same either way, bit for
-        // bit.
+        // The common case first: if every |x + u| and |u| is within the bound (and so not
+        // NaN), no clamp below could change anything, and one test of their sum replaces
+        // one per value. The result is the same either way, bit for bit.
         let mut next = *x;
-        let mut total = S::ZERO;
+        let mut total = S::STATE_ZERO;
         for k in 0..D {
-            next[k] = x[k].add(u[k]);
-            total = total.add(u[k].abs()).add(next[k].abs());
+            next[k] = S::state_add(x[k], u[k]);
+            total = S::state_add(total, S::state_add(abs::<S>(u[k]), abs::<S>(next[k])));
         }
-        if total <= bound {
+        if S::within(total, bound) {
             *x = next;
             return;
         }
     }
     for k in 0..D {
-        u[k] = u[k].clamp_magnitude(bound);
-        x[k] = x[k].add(u[k]).clamp_magnitude(bound);
+        u[k] = S::state_clamp(u[k], bound);
+        x[k] = S::state_clamp(S::state_add(x[k], u[k]), bound);
+    }
+}
+
+/// `|s|` for float states (where `State` is the float): `s` if `s ≥ 0`, else `−s`.
+#[inline(always)]
+fn abs<S: Scalar>(s: S::State) -> S::State {
+    if s < S::STATE_ZERO {
+        S::state_sub(S::STATE_ZERO, s)
+    } else {
+        s
     }
 }
 
 /// `a − b` per component.
 #[inline(always)]
-fn difference<S: Scalar, const D: usize>(a: &[S; D], b: &[S; D]) -> [S; D] {
-    let mut d = [S::ZERO; D];
+fn difference<S: Scalar, const D: usize>(a: &[S::State; D], b: &[S::State; D]) -> [S::State; D] {
+    let mut d = [S::STATE_ZERO; D];
     for k in 0..D {
-        d[k] = a[k].sub(b[k]);
+        d[k] = S::state_sub(a[k], b[k]);
     }
     d
 }
 
-/// One spring's change of relative step velocity `Δ = respond(x, u_rel) − u_rel` (the
-/// kernel of eq. 27/28) and the axis it acts along, from the positions and step velocities
-/// of its ends.
+/// One spring's change of relative step velocity `Δ = −(C_k·x + C_d·u_rel)` (the kernel
+/// of eq. 27/28) and the axis it acts along, from the positions and step velocities of
+/// its ends.
 #[inline(always)]
 fn spring_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
     spring: &Spring<S, L>,
-    positions: &[[S; D]],
-    velocities: &[[S; D]],
-) -> (S, [S; D]) {
+    positions: &[[S::State; D]],
+    velocities: &[[S::State; D]],
+) -> (S::State, [S::Coef; D]) {
     let (a, b) = (spring.a as usize, spring.b as usize);
-    let (x, n) = L::measure(&difference(&positions[b], &positions[a]), &spring.rest);
-    let relative = S::dot(&difference(&velocities[b], &velocities[a]), &n);
-    (spring.coefficients.respond(x, relative).sub(relative), n)
+    let (x, n) = L::measure(
+        &difference::<S, D>(&positions[b], &positions[a]),
+        &spring.rest,
+    );
+    let du = difference::<S, D>(&velocities[b], &velocities[a]);
+    let mut relative = S::STATE_ZERO;
+    for k in 0..D {
+        relative = S::state_add(relative, S::state_mul_coef(du[k], n[k]));
+    }
+    (kernel::respond::<S>(&spring.gains, x, relative), n)
 }
 
 /// `v += n·s` per component.
 #[inline(always)]
-fn add_along<S: Scalar, const D: usize>(v: &mut [S; D], n: &[S; D], s: S) {
+fn add_along<S: Scalar, const D: usize>(v: &mut [S::State; D], n: &[S::Coef; D], s: S::State) {
     for k in 0..D {
-        v[k] = v[k].add(n[k].mul(s));
+        v[k] = S::state_add(v[k], S::state_mul_coef(s, n[k]));
     }
 }
 
@@ -92,14 +113,17 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// ```
     /// use stiffspring::scene::{Scene, SceneConfig};
     ///
-    /// let mut s = Scene::<f64, 2, 1, 1>::new(SceneConfig::new(0.5)?.gravity([0.0, -2.0])?)?;
+    /// let mut s = Scene::<f64, 2, 1, 1>::new(SceneConfig::new(0.5)?.gravity([0.0, -2.0])?);
     /// let p = s.add_particle([0.0, 0.0], 1.0)?;
-    /// s.step();
+    /// let motion = s.step();
+    /// assert_eq!(motion.moving, 1);
     /// // Symplectic Euler: v = −1 after the step, x = −0.5.
     /// assert_eq!(s.position(p)?, [0.0, -0.5]);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn step(&mut self) {
+    pub fn step(&mut self) -> SceneMotion {
+        self.fell_asleep.clear();
+        let woke = core::mem::take(&mut self.woken);
         self.apply_gravity();
         match self.config.stepper {
             Stepper::GaussSeidel => self.solve_in_place(),
@@ -108,6 +132,11 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         self.integrate_positions();
         self.settle_anchors();
         self.update_sleep();
+        SceneMotion {
+            moving: self.free.len(),
+            fell_asleep: self.fell_asleep.len(),
+            woke,
+        }
     }
 
     /// Stage 1: `u += g·dt²` for every awake free particle.
@@ -116,9 +145,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             return;
         };
         for &p in self.free.iter() {
-            let u = &mut self.step_velocities[p as usize];
+            let u = &mut self.velocities[p as usize];
             for k in 0..D {
-                u[k] = u[k].add(g[k]);
+                u[k] = S::state_add(u[k], g[k]);
             }
         }
     }
@@ -129,19 +158,19 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     fn solve_in_place(&mut self) {
         // Every per-particle vector has the same length; slicing them to it once lets
         // the compiler drop the second bounds check of each particle a spring touches.
-        let positions: &[[S; D]] = &self.positions;
-        let u = &mut self.step_velocities[..positions.len()];
+        let positions: &[[S::State; D]] = &self.positions;
+        let u = &mut self.velocities[..positions.len()];
         for &i in self.one_sided.iter() {
             let s = &self.springs[i as usize];
             let (delta, n) = spring_response(s, positions, u);
-            add_along(&mut u[s.b as usize], &n, delta);
+            add_along::<S, D>(&mut u[s.b as usize], &n, delta);
         }
         for &i in self.two_sided.iter() {
             let s = &self.springs[i as usize];
             let (delta, n) = spring_response(s, positions, u);
             let (da, db) = s.weights.split(delta);
-            add_along(&mut u[s.a as usize], &n, da);
-            add_along(&mut u[s.b as usize], &n, db);
+            add_along::<S, D>(&mut u[s.a as usize], &n, da);
+            add_along::<S, D>(&mut u[s.b as usize], &n, db);
         }
     }
 
@@ -149,27 +178,27 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// summed per particle, then applied: the force form of eq. 16/21 integrated with
     /// symplectic Euler.
     fn solve_from_one_state(&mut self) {
-        let positions: &[[S; D]] = &self.positions;
-        let u = &self.step_velocities[..positions.len()];
+        let positions: &[[S::State; D]] = &self.positions;
+        let u = &self.velocities[..positions.len()];
         let sums = &mut self.accumulated[..positions.len()];
         for &i in self.one_sided.iter() {
             let s = &self.springs[i as usize];
             let (delta, n) = spring_response(s, positions, u);
-            add_along(&mut sums[s.b as usize], &n, delta);
+            add_along::<S, D>(&mut sums[s.b as usize], &n, delta);
         }
         for &i in self.two_sided.iter() {
             let s = &self.springs[i as usize];
             let (delta, n) = spring_response(s, positions, u);
             let (da, db) = s.weights.split(delta);
-            add_along(&mut sums[s.a as usize], &n, da);
-            add_along(&mut sums[s.b as usize], &n, db);
+            add_along::<S, D>(&mut sums[s.a as usize], &n, da);
+            add_along::<S, D>(&mut sums[s.b as usize], &n, db);
         }
         for &p in self.free.iter() {
-            let (u, sum) = (&mut self.step_velocities[p as usize], &mut sums[p as usize]);
+            let (u, sum) = (&mut self.velocities[p as usize], &mut sums[p as usize]);
             for k in 0..D {
-                u[k] = u[k].add(sum[k]);
+                u[k] = S::state_add(u[k], sum[k]);
             }
-            *sum = [S::ZERO; D];
+            *sum = [S::STATE_ZERO; D];
         }
     }
 
@@ -177,7 +206,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     ///
     /// The bound is the safety net of floating point: a network that the limit policy
     /// let through but that is unstable anyway (a length kernel far outside its range, a
-    /// topology the article's rule misjudges) saturates at `±NETWORK_MAGNITUDE` instead of
+    /// topology the article's rule misjudges) saturates at `±NETWORK_MAX` instead of
     /// overflowing, and a NaN made from an overflow inside the step is reset to 0, so no
     /// position or velocity ever leaves `step()` infinite or NaN. Free in fixed point.
     ///
@@ -186,12 +215,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// stage changes a free particle's velocity, and one pass over the particles is
     /// cheaper than two).
     fn integrate_positions(&mut self) {
-        let bound = self.bound;
+        let bound = S::state_from_f64(S::NETWORK_MAX);
         let census = self.sleep_steps != 0;
         let limit = self.sleep_step_velocity;
-        let positions: &mut [[S; D]] = &mut self.positions;
+        let positions: &mut [[S::State; D]] = &mut self.positions;
         let n = positions.len();
-        let velocities = &mut self.step_velocities[..n];
+        let velocities = &mut self.velocities[..n];
         // Two loops rather than a test per particle: a scene without sleep pays nothing
         // for the census.
         if census {
@@ -200,15 +229,15 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             for &p in self.free.iter() {
                 let p = p as usize;
                 let u = &mut velocities[p];
-                integrate(&mut positions[p], u, bound);
-                if u.iter().any(|c| c.abs() > limit) {
+                integrate::<S, D>(&mut positions[p], u, bound);
+                if u.iter().any(|c| !S::within(*c, limit)) {
                     islands[particles[p].island as usize].moving = true;
                 }
             }
         } else {
             for &p in self.free.iter() {
                 let p = p as usize;
-                integrate(&mut positions[p], &mut velocities[p], bound);
+                integrate::<S, D>(&mut positions[p], &mut velocities[p], bound);
             }
         }
     }
@@ -217,7 +246,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// damping; they are still again.
     fn settle_anchors(&mut self) {
         for &p in self.moved_anchors.iter() {
-            self.step_velocities[p as usize] = [S::ZERO; D];
+            self.velocities[p as usize] = [S::STATE_ZERO; D];
         }
         self.moved_anchors.clear();
     }
@@ -246,7 +275,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             for &p in self.free.iter() {
                 let island = self.particles[p as usize].island as usize;
                 if !self.islands[island].awake {
-                    self.step_velocities[p as usize] = [S::ZERO; D];
+                    self.velocities[p as usize] = [S::STATE_ZERO; D];
+                    // Capacity P: always room.
+                    let _ = self.fell_asleep.push(p);
                 }
             }
             self.reschedule();

@@ -241,7 +241,10 @@ impl Oscillator {
             let s = sin(0.5 * b);
             let decay = exp(-a);
             let q = decay * sin(b) / wd;
-            (expm1(-2.0 * a) - expm1(-a) + 2.0 * decay * s * s + q * z * w, q)
+            (
+                expm1(-2.0 * a) - expm1(-a) + 2.0 * decay * s * s + q * z * w,
+                q,
+            )
         } else if z == 1.0 {
             // C = 1, S = h.
             let decay = exp(-a);
@@ -342,7 +345,7 @@ impl Tuning {
     }
 
     /// The continuous oscillator this tuning samples exactly: the stored one for a tuning
-    /// from the exact map, else the inverse of the map (which needs the `libm` feature).
+    /// from the exact map, else the inverse of the map.
     ///
     /// # Errors
     ///
@@ -361,7 +364,6 @@ impl Tuning {
     /// );
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    #[cfg(feature = "libm")]
     pub fn equivalent_oscillator(&self) -> Result<Oscillator, Error> {
         use libm::{atan2, hypot, log, log1p};
         if let Some(o) = self.oscillator {
@@ -411,7 +413,7 @@ pub(crate) const fn within(
     check(value, parameter, Bound::Within { min, max })
 }
 
-#[cfg(all(test, feature = "libm"))]
+#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -446,14 +448,25 @@ mod tests {
 
     #[test]
     fn kept_start_weights_are_the_retention_times_the_start_weights() -> Result<(), Error> {
-        for (f, z, dt) in [(1.0, 0.1, 1e-3), (2.0, 1.0, 0.01), (3.0, 2.5, 0.02), (1.0, 0.0, 0.1)] {
+        for (f, z, dt) in [
+            (1.0, 0.1, 1e-3),
+            (2.0, 1.0, 0.01),
+            (3.0, 2.5, 0.02),
+            (1.0, 0.0, 0.1),
+        ] {
             let o = Oscillator::new(f, z)?;
             let t = o.tuning(dt)?;
             let (p, q) = o.start_weights(dt);
             let (pk, qk) = t.start_weights();
             let keep = t.retention();
-            assert!((pk - keep * p).abs() <= 1e-14 * (1.0 + (keep * p).abs()), "{f} {z} {dt}");
-            assert!((qk - keep * q).abs() <= 1e-14 * (keep * q).abs(), "{f} {z} {dt}");
+            assert!(
+                (pk - keep * p).abs() <= 1e-14 * (1.0 + (keep * p).abs()),
+                "{f} {z} {dt}"
+            );
+            assert!(
+                (qk - keep * q).abs() <= 1e-14 * (keep * q).abs(),
+                "{f} {z} {dt}"
+            );
         }
         // ζ = 300 at f·dt = 0.2: x(−dt) grows as e^{2ζω·dt} = e^{754}, beyond f64; the
         // kept weights do not.

@@ -392,7 +392,11 @@ impl Tuning {
         };
         let gap = math::sqrt((trace * trace - 4.0 * det).abs());
         let by_gap = if gap > 0.0 { 2.0 / gap } else { f64::INFINITY };
-        let s = if by_radius < by_gap { by_radius } else { by_gap };
+        let s = if by_radius < by_gap {
+            by_radius
+        } else {
+            by_gap
+        };
         s * (norm + det.abs())
     }
 

@@ -185,10 +185,8 @@ pub mod android {
     /// let o = stiffspring::presets::android::DEFAULT;
     /// assert!((o.angular_frequency() - 1500f64.sqrt()).abs() < 1e-12);
     /// ```
-    pub const DEFAULT: Oscillator = Oscillator::from_parts(
-        sqrt(STIFFNESS_MEDIUM),
-        DAMPING_RATIO_MEDIUM_BOUNCY,
-    );
+    pub const DEFAULT: Oscillator =
+        Oscillator::from_parts(sqrt(STIFFNESS_MEDIUM), DAMPING_RATIO_MEDIUM_BOUNCY);
 
     /// `SpringForce().setStiffness(stiffness).setDampingRatio(damping_ratio)`.
     ///

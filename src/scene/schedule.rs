@@ -1,4 +1,5 @@
-//! Islands and the schedule: which particles and springs a step touches.
+//! Islands and the schedule: which particles and springs a step touches, and how each
+//! spring runs.
 //!
 //! An island is a group of free particles connected by springs (pinned particles do not
 //! connect: they do not move, so nothing passes through them). Islands sleep as a whole,
@@ -8,6 +9,7 @@
 //! particle's springs) wakes its island.
 
 use super::{Island, Kind, Scene};
+use crate::kernel::BodyWeights;
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
 use heapless::Vec;
@@ -15,6 +17,34 @@ use heapless::Vec;
 impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<S>>
     Scene<S, D, P, K, L>
 {
+    /// Sets a spring's kind and weights from its ends' inverse masses; a one-sided
+    /// spring is oriented with its pinned end as `a`.
+    pub(crate) fn classify(&mut self, slot: usize) {
+        let s = self.springs[slot];
+        let (ia, ib) = (
+            self.particles[s.a as usize].inverse_mass,
+            self.particles[s.b as usize].inverse_mass,
+        );
+        let spring = &mut self.springs[slot];
+        match (ia > 0.0, ib > 0.0) {
+            (false, false) => spring.kind = Kind::Inert,
+            (false, true) => spring.kind = Kind::OneSided,
+            (true, false) => {
+                // Swap so that the pinned end is `a`; the extension |d| is symmetric.
+                // (An angular spring's is not: its rest angle changes sign with it.)
+                core::mem::swap(&mut spring.a, &mut spring.b);
+                spring.rest = L::flipped(&spring.rest);
+                spring.swapped = !spring.swapped;
+                spring.kind = Kind::OneSided;
+            }
+            (true, true) => {
+                spring.kind = Kind::TwoSided;
+                // Both inverse masses are finite and positive here: cannot fail.
+                spring.weights = BodyWeights::from_inverse_masses(ia, ib).unwrap_or_default();
+            }
+        }
+    }
+
     /// Recomputes the islands after a change of topology or of who is pinned, then the
     /// schedule. A new island is awake if any of its particles was in an awake island.
     /// Set-up only: O(P + K).
@@ -129,6 +159,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     fn wake_island(&mut self, root: usize) -> bool {
         let island = &mut self.islands[root];
         island.quiet = 0;
-        !core::mem::replace(&mut island.awake, true)
+        let woke = !core::mem::replace(&mut island.awake, true);
+        self.woken += usize::from(woke);
+        woke
     }
 }
