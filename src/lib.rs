@@ -58,6 +58,9 @@
 #![deny(missing_docs)]
 #![warn(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
+// Component loops `for k in 0..D` index several arrays of the same length D at once (a
+// position, a velocity, an axis); zipping three or four iterators reads worse.
+#![allow(clippy::needless_range_loop)]
 
 mod batch;
 mod error;

@@ -77,7 +77,7 @@ const fn reduce(x: f64) -> (i64, f64) {
 ///
 /// Below `−40` the result is `−1` to the last bit; above `709.78` it is `+∞`.
 pub const fn expm1(x: f64) -> f64 {
-    if x != x {
+    if x.is_nan() {
         return x;
     }
     if x < -40.0 {
@@ -97,7 +97,7 @@ pub const fn expm1(x: f64) -> f64 {
 
 /// `e^x`, accurate to a few ulp; `0` below `−745.2` and `+∞` above `709.78`.
 pub const fn exp(x: f64) -> f64 {
-    if x != x {
+    if x.is_nan() {
         return x;
     }
     if x > 709.782_712_893_384 {
@@ -163,7 +163,7 @@ pub const fn sin(x: f64) -> f64 {
 
 /// `√x` to within one ulp; `0` for `x ≤ 0` or NaN, `+∞` for `+∞`.
 pub const fn sqrt(x: f64) -> f64 {
-    if !(x > 0.0) {
+    if x.is_nan() || x <= 0.0 {
         return 0.0;
     }
     if x == f64::INFINITY {

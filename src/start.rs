@@ -54,7 +54,7 @@ impl<S: Scalar> Start<S> {
             // Twice the growth: rounding each step adds to the state a little more than
             // the exact map would.
             let limit = S::STATE_MAX / (2.0 * tuning.growth());
-            if !(limit >= 2.0 * S::MAX) {
+            if limit.is_nan() || limit < 2.0 * S::MAX {
                 return Err(Error::Unrepresentable {
                     parameter: Parameter::Stiffness,
                     backend: S::NAME,

@@ -149,11 +149,15 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// [`AngularScene`](super::AngularScene), an angular spring of rest angle
     /// `rest_length`, any finite value).
     ///
-    /// A rest length of zero pulls the particles together: with a pinned end it is a drag
-    /// handle (move the pin with [`Scene::set_position`]). Coincident ends apply nothing
-    /// (the axis is undefined there), which for a zero rest length is exactly where the
-    /// spring is satisfied. The [`Linearised`](crate::length::Linearised) kernel needs a
-    /// positive rest length.
+    /// A rest length of zero makes a *point spring* that pulls the particles together:
+    /// with a pinned end it is a drag handle or mouse spring (move the pin with
+    /// [`Scene::set_position`]). It acts on every axis at once,
+    /// `Δu = −(C_k·d + C_d·Δv)` per component of the separation `d` and the relative
+    /// velocity `Δv`, with no length and no axis: a distance spring of zero length would
+    /// damp only along its axis and let a particle orbit its handle for ever, and its
+    /// axis is undefined where the ends meet. Any length kernel takes it (the
+    /// [`Linearised`](crate::length::Linearised) one otherwise needs a positive rest
+    /// length).
     ///
     /// The spring and its neighbours are checked against
     /// [`network_limit`](super::network_limit) and handled by the scene's
@@ -250,6 +254,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             release,
             generation,
             swapped: false,
+            point: !L::SIGNED_REST && L::rest_length(&rest).to_f64() == 0.0,
         };
         if slot == self.springs.len() {
             // `free_spring_slot` found room.

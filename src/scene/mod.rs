@@ -133,6 +133,10 @@ pub(crate) struct Spring<S: Scalar, L: LengthKernel<S>> {
     pub(crate) generation: u32,
     /// The ends were swapped (to put a pinned end first) since the spring was added.
     pub(crate) swapped: bool,
+    /// A zero-length distance spring: it pulls its ends together along every axis at
+    /// once, `Δ = −(C_k·d + C_d·Δu)` per component, with no length and no axis (see
+    /// [`Scene::add_spring`]).
+    pub(crate) point: bool,
 }
 
 /// Sleep state of one island (indexed by the slot of its root particle).
@@ -195,6 +199,8 @@ where
     pub(crate) free: Vec<u16, P>,
     pub(crate) one_sided: Vec<u16, K>,
     pub(crate) two_sided: Vec<u16, K>,
+    pub(crate) one_sided_points: Vec<u16, K>,
+    pub(crate) two_sided_points: Vec<u16, K>,
     /// Roots of awake islands (for the sleep check).
     pub(crate) awake_islands: Vec<u16, P>,
     /// Pinned particles moved since the last step (their step velocity is reset after).
@@ -262,6 +268,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             free: Vec::new(),
             one_sided: Vec::new(),
             two_sided: Vec::new(),
+            one_sided_points: Vec::new(),
+            two_sided_points: Vec::new(),
             awake_islands: Vec::new(),
             moved_anchors: Vec::new(),
             accumulated: Vec::new(),
@@ -494,7 +502,11 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn active(&self) -> (usize, usize) {
-        (self.free.len(), self.one_sided.len() + self.two_sided.len())
+        let springs = self.one_sided.len()
+            + self.two_sided.len()
+            + self.one_sided_points.len()
+            + self.two_sided_points.len();
+        (self.free.len(), springs)
     }
 
     /// The total momentum of the free particles, `Σ m·v` (pinned particles have

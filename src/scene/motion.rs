@@ -166,19 +166,27 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             for k in 0..D {
                 d[k] = S::state_sub(self.positions[b][k], self.positions[a][k]);
             }
-            let (x, n) = L::measure(&d, &s.rest);
-            // The relative velocity of the ends grows by P·x along the axis.
-            let delta = S::scale(x, S::factor(s.release));
-            let (da, db) = if s.kind == Kind::OneSided {
-                (S::STATE_ZERO, delta)
+            let p = S::factor(s.release);
+            // The relative velocity of the ends grows by P·x along the axis, or by P·dᵢ
+            // along every axis for a point spring.
+            let mut change = [S::STATE_ZERO; D];
+            if s.point {
+                change = d.map(|d| S::scale(d, p));
             } else {
-                s.weights.split(delta)
-            };
-            for k in 0..D {
-                if s.kind == Kind::TwoSided {
-                    velocities[a][k] = S::state_add(velocities[a][k], S::state_mul_coef(da, n[k]));
+                let (x, n) = L::measure(&d, &s.rest);
+                let delta = S::scale(x, p);
+                for k in 0..D {
+                    change[k] = S::state_mul_coef(delta, n[k]);
                 }
-                velocities[b][k] = S::state_add(velocities[b][k], S::state_mul_coef(db, n[k]));
+            }
+            for k in 0..D {
+                let (da, db) = if s.kind == Kind::OneSided {
+                    (S::STATE_ZERO, change[k])
+                } else {
+                    s.weights.split(change[k])
+                };
+                velocities[a][k] = S::state_add(velocities[a][k], da);
+                velocities[b][k] = S::state_add(velocities[b][k], db);
             }
         }
         for v in velocities.iter().flatten() {

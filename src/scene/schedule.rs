@@ -107,6 +107,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         self.awake_islands.clear();
         self.one_sided.clear();
         self.two_sided.clear();
+        self.one_sided_points.clear();
+        self.two_sided_points.clear();
         for (p, particle) in self.particles.iter().enumerate() {
             if particle.live && particle.inverse_mass > 0.0 {
                 let island = particle.island as usize;
@@ -123,14 +125,15 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             // The free end decides: `b` for one-sided springs, either for two-sided ones.
             let island = self.particles[s.b as usize].island as usize;
             let awake = self.islands[island].awake;
-            match s.kind {
-                Kind::OneSided if awake => {
-                    let _ = self.one_sided.push(i as u16);
-                }
-                Kind::TwoSided if awake => {
-                    let _ = self.two_sided.push(i as u16);
-                }
-                _ => {}
+            let list = match (s.kind, s.point) {
+                (Kind::OneSided, false) => &mut self.one_sided,
+                (Kind::TwoSided, false) => &mut self.two_sided,
+                (Kind::OneSided, true) => &mut self.one_sided_points,
+                (Kind::TwoSided, true) => &mut self.two_sided_points,
+                _ => continue,
+            };
+            if awake {
+                let _ = list.push(i as u16);
             }
         }
     }

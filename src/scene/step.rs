@@ -97,6 +97,24 @@ fn spring_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
     (kernel::respond::<S>(&spring.gains, x, relative), n)
 }
 
+/// A point spring's change of relative step velocity per component,
+/// `Δᵢ = −(C_k·dᵢ + C_d·Δuᵢ)`: the kernel on every axis at once.
+#[inline(always)]
+fn point_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
+    spring: &Spring<S, L>,
+    positions: &[[S::State; D]],
+    velocities: &[[S::State; D]],
+) -> [S::State; D] {
+    let (a, b) = (spring.a as usize, spring.b as usize);
+    let d = difference::<S, D>(&positions[b], &positions[a]);
+    let du = difference::<S, D>(&velocities[b], &velocities[a]);
+    let mut delta = [S::STATE_ZERO; D];
+    for k in 0..D {
+        delta[k] = kernel::respond::<S>(&spring.gains, d[k], du[k]);
+    }
+    delta
+}
+
 /// `v += n·s` per component.
 #[inline(always)]
 fn add_along<S: Scalar, const D: usize>(v: &mut [S::State; D], n: &[S::Coef; D], s: S::State) {
@@ -172,6 +190,23 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             add_along::<S, D>(&mut u[s.a as usize], &n, da);
             add_along::<S, D>(&mut u[s.b as usize], &n, db);
         }
+        for &i in self.one_sided_points.iter() {
+            let s = &self.springs[i as usize];
+            let delta = point_response(s, positions, u);
+            let ub = &mut u[s.b as usize];
+            for k in 0..D {
+                ub[k] = S::state_add(ub[k], delta[k]);
+            }
+        }
+        for &i in self.two_sided_points.iter() {
+            let s = &self.springs[i as usize];
+            let delta = point_response(s, positions, u);
+            for k in 0..D {
+                let (da, db) = s.weights.split(delta[k]);
+                u[s.a as usize][k] = S::state_add(u[s.a as usize][k], da);
+                u[s.b as usize][k] = S::state_add(u[s.b as usize][k], db);
+            }
+        }
     }
 
     /// Stage 2, Jacobi: every spring's impulse from the state at the start of the stage,
@@ -192,6 +227,23 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             let (da, db) = s.weights.split(delta);
             add_along::<S, D>(&mut sums[s.a as usize], &n, da);
             add_along::<S, D>(&mut sums[s.b as usize], &n, db);
+        }
+        for &i in self.one_sided_points.iter() {
+            let s = &self.springs[i as usize];
+            let delta = point_response(s, positions, u);
+            let sb = &mut sums[s.b as usize];
+            for k in 0..D {
+                sb[k] = S::state_add(sb[k], delta[k]);
+            }
+        }
+        for &i in self.two_sided_points.iter() {
+            let s = &self.springs[i as usize];
+            let delta = point_response(s, positions, u);
+            for k in 0..D {
+                let (da, db) = s.weights.split(delta[k]);
+                sums[s.a as usize][k] = S::state_add(sums[s.a as usize][k], da);
+                sums[s.b as usize][k] = S::state_add(sums[s.b as usize][k], db);
+            }
         }
         for &p in self.free.iter() {
             let (u, sum) = (&mut self.velocities[p as usize], &mut sums[p as usize]);
