@@ -10,6 +10,15 @@ use crate::scalar::Scalar;
 /// Good for stiff networks that stay near their rest lengths (ropes, jelly); wrong for
 /// large stretches. `1/L`, `1/(2L)` and `L²` are precomputed, so it needs `L > 0`.
 ///
+/// **A hardening spring.** The stiffness impulse `−C_k·x·n = −C_k·(|d|² − L²)·d/(2L²)`
+/// is the gradient of `C_k·(|d|² − L²)²/(8L²)` (so it conserves energy), whose Hessian at
+/// stretch `s = |d|/L` is `C_k/2·((s² − 1)·I + 2s²·n̂n̂ᵀ)`: axial stiffness
+/// `C_k·(3s² − 1)/2`, transverse `C_k·(s² − 1)/2`, against `C_k` and `C_k·(1 − 1/s)` for
+/// the exact kernel. The damping impulse `−C_d·(n·u)·n` is `C_d·s²` along the axis. At
+/// `s = 1.5` (a mesh pre-stretched by half) that is `2.875·C_k` and `2.25·C_d`, which
+/// takes a network at its limit far past it; a scene applies
+/// [`LengthKernel::stiffening`] at set-up (`tests/linearised_stretch.rs`).
+///
 /// ```
 /// use stiffspring::length::{LengthKernel, Linearised};
 ///
@@ -58,6 +67,19 @@ impl<S: Scalar> LengthKernel<S> for Linearised {
 
     fn rest_length(rest: &Self::Rest) -> S {
         rest.length
+    }
+
+    /// `(max(1, (3s² − 1)/2), max(1, s²))`: see the [type docs](Linearised).
+    ///
+    /// ```
+    /// use stiffspring::length::{LengthKernel, Linearised};
+    /// assert_eq!(<Linearised as LengthKernel<f64>>::stiffening(1.5), (2.875, 2.25));
+    /// assert_eq!(<Linearised as LengthKernel<f64>>::stiffening(0.9), (1.0, 1.0));
+    /// ```
+    fn stiffening(stretch: f64) -> (f64, f64) {
+        let square = stretch * stretch;
+        // NaN (never from a scene) fails `max` toward 1.
+        ((1.5 * square - 0.5).max(1.0), square.max(1.0))
     }
 
     #[inline(always)]

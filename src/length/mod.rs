@@ -78,6 +78,22 @@ pub trait LengthKernel<S: Scalar>: Sealed + Copy + Debug + Default + 'static {
     fn flipped(rest: &Self::Rest) -> Self::Rest {
         *rest
     }
+    /// How much stiffer and more damped than the exact spring this kernel acts at
+    /// `stretch = |d|/L`: the factors `(a, b)` by which its largest stiffness eigenvalue
+    /// exceeds `C_k` and its damping along the axis exceeds `C_d`, each at least 1. A
+    /// scene checks `a·C_k` and `b·C_d` against the [network
+    /// limit](crate::scene::network_limit) at the stretch a spring has when it is added
+    /// or retuned. `(1, 1)` for the exact kernels (a stretched exact spring's transverse
+    /// stiffness `C_k·(1 − L/|d|)` is below its axial one).
+    ///
+    /// ```
+    /// use stiffspring::length::{Exact, LengthKernel};
+    /// assert_eq!(<Exact as LengthKernel<f32>>::stiffening(1.5), (1.0, 1.0));
+    /// ```
+    fn stiffening(stretch: f64) -> (f64, f64) {
+        let _ = stretch;
+        (1.0, 1.0)
+    }
     /// The extension (in the state format) and the unit (or approximately unit) axis for
     /// the separation `d`.
     fn measure<const D: usize>(d: &[S::State; D], rest: &Self::Rest) -> (S::State, [S::Coef; D]);

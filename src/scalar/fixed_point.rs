@@ -86,6 +86,7 @@ macro_rules! fixed_backend {
             type Gains = FixedGains<$Half>;
             type Factor = FixedFactor<$Half>;
             type Coef = $Coef;
+            type Remainder = ();
 
             const ZERO: Self = <$S>::ZERO;
             const ONE: Self = <$S>::ONE;
@@ -195,6 +196,18 @@ macro_rules! fixed_backend {
                 // −b ≤ x ≤ b ⟺ 0 ≤ x + b ≤ 2b, one unsigned comparison; the bound is at
                 // most STATE_MAX/2 by construction, so 2b does not overflow.
                 (state.wrapping_add(bound) as $StateU) <= (bound as $StateU).wrapping_mul(2)
+            }
+            #[inline(always)]
+            fn add_carrying(x: $State, _: (), u: $State) -> ($State, ()) {
+                (x.saturating_add(u), ())
+            }
+            #[inline(always)]
+            fn difference_carrying(b: $State, _: (), a: $State, _: ()) -> $State {
+                b.saturating_sub(a)
+            }
+            #[inline(always)]
+            fn remainder_to_f64(_: ()) -> f64 {
+                0.0
             }
             #[inline(always)]
             fn state_clamp(state: $State, _bound: $State) -> $State {

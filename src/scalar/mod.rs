@@ -117,6 +117,11 @@ pub trait Scalar:
     /// A factor of any magnitude, applied at set-up and on retargets (the start weights,
     /// two-body weights).
     type Factor: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+    /// What a scene carries beside each position to add step velocities without losing
+    /// them: the rounding remainder in `f32` (compensated summation), nothing (`()`) in
+    /// `f64`, whose rounding is far below what a network shows, and in fixed point, whose
+    /// additions are exact.
+    type Remainder: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
 
     /// Zero.
     const ZERO: Self;
@@ -173,6 +178,24 @@ pub trait Scalar:
     /// `|state| ≤ bound` for a non-negative `bound` (in fixed point one add and one
     /// unsigned comparison).
     fn within(state: Self::State, bound: Self::State) -> bool;
+    /// `x + u` carrying the remainder `r`: the new position and remainder, so that
+    /// `x + r` moves by `u` to the rounding of `u + r`, not of `x + u` (Knuth's TwoSum in
+    /// `f32`; a plain add elsewhere).
+    fn add_carrying(
+        x: Self::State,
+        r: Self::Remainder,
+        u: Self::State,
+    ) -> (Self::State, Self::Remainder);
+    /// `(b + r_b) − (a + r_a)`: a separation rounded to its own size, not to the
+    /// positions'.
+    fn difference_carrying(
+        b: Self::State,
+        rb: Self::Remainder,
+        a: Self::State,
+        ra: Self::Remainder,
+    ) -> Self::State;
+    /// A remainder as `f64` (0 where there is none).
+    fn remainder_to_f64(r: Self::Remainder) -> f64;
     /// `state` limited to `[−bound, bound]`, NaN mapped to 0: the safety net that keeps
     /// an unstable float network finite. The identity in fixed point, whose arithmetic
     /// saturates.

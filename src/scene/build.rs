@@ -87,12 +87,14 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             // `free_particle_slot` found room: these pushes succeed.
             let _ = self.particles.push(particle);
             let _ = self.positions.push(state);
+            let _ = self.remainders.push([Default::default(); D]);
             let _ = self.velocities.push([S::STATE_ZERO; D]);
             let _ = self.islands.push(Island::default());
             let _ = self.accumulated.push([S::STATE_ZERO; D]);
         } else {
             self.particles[slot] = particle;
             self.positions[slot] = state;
+            self.remainders[slot] = [Default::default(); D];
             self.velocities[slot] = [S::STATE_ZERO; D];
         }
         self.islands[slot] = Island {
@@ -206,8 +208,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             extra: [Some(sa), Some(sb)],
             freed: None,
         };
+        let factors = self.stiffening(sa, sb, &new.rest);
         let (coefficients, clamped_self) =
-            self.checked(new.coefficients, self.share_count(sa, sb, &change))?;
+            self.checked(new.coefficients, self.share_count(sa, sb, &change), factors)?;
         let clamps = self.check_neighbours(&[sa, sb], &change)?;
         let gains = if clamped_self {
             gains_of::<S>(&Tuning::from_coefficients_extended(
@@ -351,11 +354,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         tuning: &Tuning,
     ) -> Result<Added, Error> {
         let (sa, sb) = (self.slot(a)?, self.slot(b)?);
-        let mut d = [S::STATE_ZERO; D];
-        for k in 0..D {
-            d[k] = S::state_sub(self.positions[sb][k], self.positions[sa][k]);
-        }
-        let (x, _) = L::measure(&d, &L::rest(S::ZERO));
+        let (x, _) = L::measure(&self.separation(sa, sb), &L::rest(S::ZERO));
         self.add_spring(a, b, S::narrow(x), tuning)
     }
 
@@ -401,7 +400,18 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             freed: None,
         };
         let degree = self.share_count_of(target, &change);
-        let (coefficients, clamped_self) = self.checked(new.coefficients, degree)?;
+        // The pin goes exactly at `point`: the stretch is measured from there.
+        let mut d = [S::STATE_ZERO; D];
+        for k in 0..D {
+            d[k] = S::state_sub(self.positions[target][k], point[k].widen());
+        }
+        let length = L::rest_length(&new.rest).to_f64();
+        let factors = if L::SIGNED_REST || length <= 0.0 {
+            (1.0, 1.0)
+        } else {
+            L::stiffening(S::state_to_f64(S::norm(&d)) / length)
+        };
+        let (coefficients, clamped_self) = self.checked(new.coefficients, degree, factors)?;
         let clamps = self.check_neighbours(&[target], &change)?;
         let gains = if clamped_self {
             gains_of::<S>(&Tuning::from_coefficients_extended(
@@ -481,7 +491,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         };
         let new = self.new_spring(L::rest_length(&rest), tuning)?;
         let degree = self.share_count(a, b, &Change::NONE);
-        let (coefficients, clamped) = self.checked(new.coefficients, degree)?;
+        let factors = self.stiffening(a, b, &s.rest);
+        let (coefficients, clamped) = self.checked(new.coefficients, degree, factors)?;
         let gains = if clamped {
             gains_of::<S>(&Tuning::from_coefficients_extended(
                 coefficients.0,

@@ -169,29 +169,48 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             .max(self.share_count_of(b, change))
     }
 
-    /// The coefficients `(C_k, C_d)` as the policy allows them for share count `degree`,
-    /// and whether they were clamped.
+    /// The length kernel's stiffening factors ([`LengthKernel::stiffening`]) for a
+    /// spring with rest data `rest` between slots `a` and `b` at their current distance;
+    /// `(1, 1)` for angles and point springs.
+    pub(crate) fn stiffening(&self, a: usize, b: usize, rest: &L::Rest) -> (f64, f64) {
+        let length = L::rest_length(rest).to_f64();
+        if L::SIGNED_REST || length <= 0.0 {
+            return (1.0, 1.0);
+        }
+        let distance = S::state_to_f64(S::norm(&self.separation(a, b)));
+        L::stiffening(distance / length)
+    }
+
+    /// The coefficients `(C_k, C_d)` as the policy allows them for share count `degree`
+    /// and the length kernel's stiffening factors `(a, b)` (`a·C_k` and `b·C_d` must be
+    /// within the limit), and whether they were clamped.
     pub(crate) fn checked(
         &self,
         coefficients: (f64, f64),
         degree: u16,
+        (a, b): (f64, f64),
     ) -> Result<((f64, f64), bool), Error> {
         let limit = network_limit(degree as usize, self.config.stepper);
+        let (limit_k, limit_d) = (limit / a, limit / b);
         let (ck, cd) = coefficients;
         // A stored spring's coefficients are the requested ones rounded to the backend's
         // format (24 significant bits in f32, 30 in fixed point), so a spring tuned
         // exactly at the limit may read back a hair above it; a relative slack of 1e−6,
         // far below any stability margin, keeps it accepted.
         let slack = limit * 1e-6;
-        if ck <= limit + slack && cd <= limit + slack {
+        if ck <= limit_k + slack && cd <= limit_d + slack {
             return Ok(((ck, cd), false));
         }
         match self.config.policy {
             LimitPolicy::Reject => Err(Error::ExceedsNetworkLimit {
-                coefficient: ck.max(cd),
-                limit,
+                coefficient: if ck > limit_k + slack { ck } else { cd },
+                limit: if ck > limit_k + slack {
+                    limit_k
+                } else {
+                    limit_d
+                },
             }),
-            LimitPolicy::Clamp => Ok(((ck.min(limit), cd.min(limit)), true)),
+            LimitPolicy::Clamp => Ok(((ck.min(limit_k), cd.min(limit_d)), true)),
         }
     }
 
@@ -210,7 +229,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
                 continue;
             }
             let degree = self.share_count(a, b, change);
-            let ((ck, cd), clamped) = self.checked(S::gains_to_f64(&s.gains), degree)?;
+            let factors = self.stiffening(a, b, &s.rest);
+            let ((ck, cd), clamped) = self.checked(S::gains_to_f64(&s.gains), degree, factors)?;
             if clamped {
                 let tuning = Tuning::from_coefficients_extended(ck, cd, self.config.dt)?;
                 // At most K springs: always room.

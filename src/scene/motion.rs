@@ -47,6 +47,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             }
         }
         self.positions[slot] = to;
+        self.remainders[slot] = [Default::default(); D];
         if self.wake_around(slot) {
             self.reschedule();
         }
@@ -162,10 +163,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
                 continue;
             }
             let (a, b) = (s.a as usize, s.b as usize);
-            let mut d = [S::STATE_ZERO; D];
-            for k in 0..D {
-                d[k] = S::state_sub(self.positions[b][k], self.positions[a][k]);
-            }
+            let d = self.separation(a, b);
             let p = S::factor(s.release);
             // The relative velocity of the ends grows by P·x along the axis, or by P·dᵢ
             // along every axis for a point spring.

@@ -20,17 +20,19 @@ fn adds_in_hardware<S: Scalar>() -> bool {
             || (cfg!(target_abi = "eabihf") && core::mem::size_of::<S>() == 4))
 }
 
-/// `x += u` for one particle, within `bound` (see `integrate_positions`).
+/// `x += u` for one particle, within `bound` (see `integrate_positions`), carrying the
+/// position's remainder ([`Scalar::add_carrying`]).
 #[inline(always)]
 fn integrate<S: Scalar, const D: usize>(
     x: &mut [S::State; D],
+    r: &mut [S::Remainder; D],
     u: &mut [S::State; D],
     bound: S::State,
 ) {
     if S::RESOLUTION > 0.0 {
         // Fixed point saturates by itself.
         for k in 0..D {
-            x[k] = S::state_add(x[k], u[k]);
+            (x[k], r[k]) = S::add_carrying(x[k], r[k], u[k]);
         }
         return;
     }
@@ -38,20 +40,28 @@ fn integrate<S: Scalar, const D: usize>(
         // The common case first: if every |x + u| and |u| is within the bound (and so not
         // NaN), no clamp below could change anything, and one test of their sum replaces
         // one per value. The result is the same either way, bit for bit.
-        let mut next = *x;
+        let (mut next, mut rest) = (*x, *r);
         let mut total = S::STATE_ZERO;
         for k in 0..D {
-            next[k] = S::state_add(x[k], u[k]);
+            (next[k], rest[k]) = S::add_carrying(x[k], r[k], u[k]);
             total = S::state_add(total, S::state_add(abs::<S>(u[k]), abs::<S>(next[k])));
         }
         if S::within(total, bound) {
             *x = next;
+            *r = rest;
             return;
         }
     }
     for k in 0..D {
         u[k] = S::state_clamp(u[k], bound);
-        x[k] = S::state_clamp(S::state_add(x[k], u[k]), bound);
+        let (next, rest) = S::add_carrying(x[k], r[k], u[k]);
+        x[k] = S::state_clamp(next, bound);
+        // A clamped or non-finite position drops its remainder.
+        r[k] = if x[k] == next {
+            rest
+        } else {
+            Default::default()
+        };
     }
 }
 
@@ -75,20 +85,37 @@ fn difference<S: Scalar, const D: usize>(a: &[S::State; D], b: &[S::State; D]) -
     d
 }
 
+/// The positions of a scene with their remainders, as the hot loop reads them.
+#[derive(Clone, Copy)]
+struct Positions<'a, S: Scalar, const D: usize> {
+    x: &'a [[S::State; D]],
+    r: &'a [[S::Remainder; D]],
+}
+
+impl<S: Scalar, const D: usize> Positions<'_, S, D> {
+    /// `p_b − p_a`, the remainders included.
+    #[inline(always)]
+    fn separation(&self, a: usize, b: usize) -> [S::State; D] {
+        let (xa, xb, ra, rb) = (&self.x[a], &self.x[b], &self.r[a], &self.r[b]);
+        let mut d = [S::STATE_ZERO; D];
+        for k in 0..D {
+            d[k] = S::difference_carrying(xb[k], rb[k], xa[k], ra[k]);
+        }
+        d
+    }
+}
+
 /// One spring's change of relative step velocity `Δ = −(C_k·x + C_d·u_rel)` (the kernel
 /// of eq. 27/28) and the axis it acts along, from the positions and step velocities of
 /// its ends.
 #[inline(always)]
 fn spring_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
     spring: &Spring<S, L>,
-    positions: &[[S::State; D]],
+    positions: Positions<'_, S, D>,
     velocities: &[[S::State; D]],
 ) -> (S::State, [S::Coef; D]) {
     let (a, b) = (spring.a as usize, spring.b as usize);
-    let (x, n) = L::measure(
-        &difference::<S, D>(&positions[b], &positions[a]),
-        &spring.rest,
-    );
+    let (x, n) = L::measure(&positions.separation(a, b), &spring.rest);
     let du = difference::<S, D>(&velocities[b], &velocities[a]);
     let mut relative = S::STATE_ZERO;
     for k in 0..D {
@@ -102,11 +129,11 @@ fn spring_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
 #[inline(always)]
 fn point_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
     spring: &Spring<S, L>,
-    positions: &[[S::State; D]],
+    positions: Positions<'_, S, D>,
     velocities: &[[S::State; D]],
 ) -> [S::State; D] {
     let (a, b) = (spring.a as usize, spring.b as usize);
-    let d = difference::<S, D>(&positions[b], &positions[a]);
+    let d = positions.separation(a, b);
     let du = difference::<S, D>(&velocities[b], &velocities[a]);
     let mut delta = [S::STATE_ZERO; D];
     for k in 0..D {
@@ -176,8 +203,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     fn solve_in_place(&mut self) {
         // Every per-particle vector has the same length; slicing them to it once lets
         // the compiler drop the second bounds check of each particle a spring touches.
-        let positions: &[[S::State; D]] = &self.positions;
-        let u = &mut self.velocities[..positions.len()];
+        let n = self.positions.len();
+        let positions = Positions::<S, D> {
+            x: &self.positions,
+            r: &self.remainders[..n],
+        };
+        let u = &mut self.velocities[..n];
         for &i in self.one_sided.iter() {
             let s = &self.springs[i as usize];
             let (delta, n) = spring_response(s, positions, u);
@@ -213,9 +244,13 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// summed per particle, then applied: the force form of eq. 16/21 integrated with
     /// symplectic Euler.
     fn solve_from_one_state(&mut self) {
-        let positions: &[[S::State; D]] = &self.positions;
-        let u = &self.velocities[..positions.len()];
-        let sums = &mut self.accumulated[..positions.len()];
+        let n = self.positions.len();
+        let positions = Positions::<S, D> {
+            x: &self.positions,
+            r: &self.remainders[..n],
+        };
+        let u = &self.velocities[..n];
+        let sums = &mut self.accumulated[..n];
         for &i in self.one_sided.iter() {
             let s = &self.springs[i as usize];
             let (delta, n) = spring_response(s, positions, u);
@@ -272,6 +307,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         let limit = self.sleep_step_velocity;
         let positions: &mut [[S::State; D]] = &mut self.positions;
         let n = positions.len();
+        let remainders = &mut self.remainders[..n];
         let velocities = &mut self.velocities[..n];
         // Two loops rather than a test per particle: a scene without sleep pays nothing
         // for the census.
@@ -281,7 +317,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             for &p in self.free.iter() {
                 let p = p as usize;
                 let u = &mut velocities[p];
-                integrate::<S, D>(&mut positions[p], u, bound);
+                integrate::<S, D>(&mut positions[p], &mut remainders[p], u, bound);
                 if u.iter().any(|c| !S::within(*c, limit)) {
                     islands[particles[p].island as usize].moving = true;
                 }
@@ -289,7 +325,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         } else {
             for &p in self.free.iter() {
                 let p = p as usize;
-                integrate::<S, D>(&mut positions[p], &mut velocities[p], bound);
+                integrate::<S, D>(
+                    &mut positions[p],
+                    &mut remainders[p],
+                    &mut velocities[p],
+                    bound,
+                );
             }
         }
     }
