@@ -338,7 +338,9 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         for k in 0..D {
             check_position(target[k], Parameter::Position)?;
             let delta = S::state_sub(self.target[slot][k].widen(), target[k].widen());
-            x[k] = self.start.check(S::state_add(x[k], delta), Parameter::Position)?;
+            x[k] = self
+                .start
+                .check(S::state_add(x[k], delta), Parameter::Position)?;
             u[k] = self
                 .start
                 .check(self.start.shifted(u[k], delta), Parameter::StepVelocity)?;
@@ -517,40 +519,47 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             // slots hold a zero state, which a step leaves at zero.
             let used = self.used;
             let (offsets, velocities) = (&mut self.offset[..used], &mut self.step_velocity[..used]);
+            let live = &self.live[..used];
+            let settled = &mut self.settled;
             for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate() {
-                let mut inside = true;
                 for k in 0..D {
                     S::advance(&gains, &mut x[k], &mut u[k]);
-                    inside &= band.contains(x[k], u[k]);
                 }
-                if inside && self.live[slot] {
-                    *x = [S::STATE_ZERO; D];
-                    *u = [S::STATE_ZERO; D];
-                    // Cannot fail: at most N slots settle.
-                    let _ = self.settled.push(slot as u16);
+                // The first component outside its band ends the test.
+                if (0..D).all(|k| band.contains(x[k], u[k])) {
+                    core::hint::cold_path();
+                    // A removed slot keeps a zero state, inside every band.
+                    if live[slot] {
+                        *x = [S::STATE_ZERO; D];
+                        *u = [S::STATE_ZERO; D];
+                        // Cannot fail: at most N slots settle.
+                        let _ = settled.push(slot as u16);
+                    }
                 }
             }
         } else {
             for &slot in self.awake.iter() {
                 let slot = slot as usize;
                 let (x, u) = (&mut self.offset[slot], &mut self.step_velocity[slot]);
-                let mut inside = true;
                 for k in 0..D {
                     S::advance(&gains, &mut x[k], &mut u[k]);
-                    inside &= band.contains(x[k], u[k]);
                 }
-                if inside {
+                if (0..D).all(|k| band.contains(x[k], u[k])) {
                     *x = [S::STATE_ZERO; D];
                     *u = [S::STATE_ZERO; D];
                     let _ = self.settled.push(slot as u16);
                 }
             }
         }
-        for &slot in self.settled.iter() {
-            self.is_awake[slot as usize] = false;
+        // The awake list changes only when something settled: a step in which nothing
+        // did pays nothing for the bookkeeping.
+        if !self.settled.is_empty() {
+            for &slot in self.settled.iter() {
+                self.is_awake[slot as usize] = false;
+            }
+            let is_awake = &self.is_awake;
+            self.awake.retain(|&s| is_awake[s as usize]);
         }
-        let is_awake = &self.is_awake;
-        self.awake.retain(|&s| is_awake[s as usize]);
         BatchMotion {
             moving: self.awake.len(),
             settled: self.settled.len(),

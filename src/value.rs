@@ -349,7 +349,9 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
             let Some(v) = saturate(velocity[i]) else {
                 return;
             };
-            u[i] = self.start.clamp(self.start.step_velocity_unchecked(self.offset[i], v));
+            u[i] = self
+                .start
+                .clamp(self.start.step_velocity_unchecked(self.offset[i], v));
         }
         self.step_velocity = u;
         self.at_rest = false;
@@ -438,12 +440,12 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         if self.at_rest {
             return Motion::Resting;
         }
-        let mut inside = true;
         for i in 0..D {
             S::advance(&self.gains, &mut self.offset[i], &mut self.step_velocity[i]);
-            inside &= self.band.contains(self.offset[i], self.step_velocity[i]);
         }
-        if inside {
+        // Every component inside its band; the first one outside ends the test.
+        let band = &self.band;
+        if (0..D).all(|i| band.contains(self.offset[i], self.step_velocity[i])) {
             self.settle();
             Motion::Settled
         } else {
@@ -454,7 +456,9 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// Advances the value by one time step and nothing else: no rest test, no flag. The
     /// cheapest step, for a loop that runs the spring continuously (a haptic output) or
     /// tests rest itself. A value advanced this way never settles; [`SpringValue::step`]
-    /// afterwards picks up where it is.
+    /// afterwards picks up where it is. A value at rest sits on its target with no
+    /// velocity, which a step leaves unchanged, so it stays at rest (and `advance`
+    /// touches no flag: its cost is the spring's and nothing else).
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
@@ -470,7 +474,12 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         for i in 0..D {
             S::advance(&self.gains, &mut self.offset[i], &mut self.step_velocity[i]);
         }
-        self.at_rest = false;
+        // No `at_rest = false`: at rest the state is zero (see `settle` and `wake_if`),
+        // and zero is a fixed point of every backend's step.
+        debug_assert!(
+            !self.at_rest
+                || (self.offset == [S::STATE_ZERO; D] && self.step_velocity == [S::STATE_ZERO; D])
+        );
     }
 
     /// The current position.
@@ -551,7 +560,10 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn velocity(&self) -> [S; D] {
         let mut v = [S::ZERO; D];
-        for (v, (x, u)) in v.iter_mut().zip(self.offset.iter().zip(&self.step_velocity)) {
+        for (v, (x, u)) in v
+            .iter_mut()
+            .zip(self.offset.iter().zip(&self.step_velocity))
+        {
             *v = self.start.velocity(*x, *u);
         }
         v

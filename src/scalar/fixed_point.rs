@@ -13,7 +13,7 @@
 //! The `fixed` crate provides the types, the conversions and the saturating add; the
 //! products are taken on the raw bits, with the rounding chosen in the parent module.
 
-use super::wide::{broad, narrow};
+use super::wide::{FastGains, broad, narrow, narrow_step};
 use super::{Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
@@ -31,6 +31,8 @@ use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 pub struct FixedGains<M> {
     pub(crate) stiffness: FixedFactor<M>,
     pub(crate) damping: FixedFactor<M>,
+    /// The same gains prepared for the step's fast path (see `wide::FastGains`).
+    pub(crate) fast: FastGains<M>,
 }
 
 /// A factor of any magnitude in a fixed-point backend: `mantissa / 2^shift`.
@@ -77,7 +79,8 @@ narrow_fn!(narrow_q32, i128, u128, i64, 32);
 macro_rules! fixed_backend {
     (
         $S:ty, $Bits:ty, $State:ty, $StateU:ty, $Half:ty, $Coef:ty, $Wide:ty,
-        $arith:ident, $narrow:ident, $narrow_self:ident, $guard:expr, $name:literal
+        $arith:ident, $narrow:ident, $narrow_self:ident, $guard:expr, $name:literal,
+        $fast:expr, $fast_step:expr
     ) => {
         impl Sealed for $S {}
 
@@ -86,6 +89,7 @@ macro_rules! fixed_backend {
             type Gains = FixedGains<$Half>;
             type Factor = FixedFactor<$Half>;
             type Coef = $Coef;
+            type Band = ($State, $StateU);
 
             const ZERO: Self = <$S>::ZERO;
             const ONE: Self = <$S>::ONE;
@@ -128,6 +132,7 @@ macro_rules! fixed_backend {
                 Some(FixedGains {
                     stiffness: k,
                     damping: d,
+                    fast: $fast(k, d),
                 })
             }
             fn gains_to_f64(gains: &Self::Gains) -> (f64, f64) {
@@ -154,10 +159,14 @@ macro_rules! fixed_backend {
                 if value.is_nan() {
                     return 0;
                 }
-                let scaled = value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64
-                    * 4_294_967_296.0;
+                let scaled =
+                    value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64 * 4_294_967_296.0;
                 // `as` saturates at the ends of the integer type.
-                let r = if scaled >= 0.0 { scaled + 0.5 } else { scaled - 0.5 };
+                let r = if scaled >= 0.0 {
+                    scaled + 0.5
+                } else {
+                    scaled - 0.5
+                };
                 r as $State
             }
             fn state_to_f64(state: $State) -> f64 {
@@ -165,11 +174,19 @@ macro_rules! fixed_backend {
             }
             #[inline(always)]
             fn advance(gains: &Self::Gains, x: &mut $State, v: &mut $State) {
-                let k = gains.stiffness;
-                let d = gains.damping;
-                let u = v.saturating_sub($arith::mul_shift::<false>(*x, k.mantissa, k.shift));
-                *x = x.saturating_add(u);
-                *v = u.saturating_sub($arith::mul_shift::<true>(u, d.mantissa, d.shift));
+                if !$fast_step(&gains.fast, x, v) {
+                    general_step(gains, x, v);
+                }
+                /// Any gains, any state: the wide products and saturating sums.
+                #[cold]
+                #[inline(never)]
+                fn general_step(gains: &FixedGains<$Half>, x: &mut $State, v: &mut $State) {
+                    let k = gains.stiffness;
+                    let d = gains.damping;
+                    let u = v.saturating_sub($arith::mul_shift::<false>(*x, k.mantissa, k.shift));
+                    *x = x.saturating_add(u);
+                    *v = u.saturating_sub($arith::mul_shift::<true>(u, d.mantissa, d.shift));
+                }
             }
             #[inline(always)]
             fn state_add(a: $State, b: $State) -> $State {
@@ -188,6 +205,15 @@ macro_rules! fixed_backend {
                 // −b ≤ x ≤ b ⟺ 0 ≤ x + b ≤ 2b, one unsigned comparison; the bound is at
                 // most STATE_MAX/2 by construction, so 2b does not overflow.
                 (state.wrapping_add(bound) as $StateU) <= (bound as $StateU).wrapping_mul(2)
+            }
+            #[inline]
+            fn band(bound: $State) -> ($State, $StateU) {
+                (bound, (bound as $StateU).wrapping_mul(2))
+            }
+            #[inline(always)]
+            fn in_band(state: $State, band: ($State, $StateU)) -> bool {
+                // As `within`, with `2b` computed at set-up.
+                (state.wrapping_add(band.0) as $StateU) <= band.1
             }
             #[inline]
             fn coef(value: f64) -> Self::Coef {
@@ -220,7 +246,9 @@ macro_rules! fixed_backend {
             }
             #[inline(always)]
             fn mul(self, rhs: Self) -> Self {
-                <$S>::from_bits($narrow_self(self.to_bits() as $Wide * rhs.to_bits() as $Wide))
+                <$S>::from_bits($narrow_self(
+                    self.to_bits() as $Wide * rhs.to_bits() as $Wide,
+                ))
             }
             #[inline(always)]
             fn mul_coef(self, coef: Self::Coef) -> Self {
@@ -246,8 +274,41 @@ macro_rules! fixed_backend {
     };
 }
 
-fixed_backend!(I16F16, i32, i64, u64, i32, I3F29, i64, narrow, narrow_q29, narrow_q16, 24, "I16F16");
-fixed_backend!(I32F32, i64, i128, u128, i64, I3F61, i128, broad, narrow_q61, narrow_q32, 32, "I32F32");
+fixed_backend!(
+    I16F16,
+    i32,
+    i64,
+    u64,
+    i32,
+    I3F29,
+    i64,
+    narrow,
+    narrow_q29,
+    narrow_q16,
+    24,
+    "I16F16",
+    |k: FixedFactor<i32>, d: FixedFactor<i32>| FastGains::narrow(
+        (k.mantissa, k.shift),
+        (d.mantissa, d.shift)
+    ),
+    narrow_step::advance
+);
+fixed_backend!(
+    I32F32,
+    i64,
+    i128,
+    u128,
+    i64,
+    I3F61,
+    i128,
+    broad,
+    narrow_q61,
+    narrow_q32,
+    32,
+    "I32F32",
+    |_: FixedFactor<i64>, _: FixedFactor<i64>| FastGains::default(),
+    |_: &FastGains<i64>, _: &mut i128, _: &mut i128| false
+);
 
 #[cfg(test)]
 mod tests {
@@ -264,7 +325,10 @@ mod tests {
         assert_eq!(I16F16::narrow(i64::MAX), I16F16::MAX);
         assert_eq!(I16F16::narrow(i64::MIN), I16F16::MIN);
         assert_eq!(I32F32::narrow(i128::MIN), I32F32::MIN);
-        assert_eq!(I16F16::state_to_f64(I16F16::state_from_f64(-1234.5)), -1234.5);
+        assert_eq!(
+            I16F16::state_to_f64(I16F16::state_from_f64(-1234.5)),
+            -1234.5
+        );
         assert_eq!(I32F32::state_to_f64(I32F32::state_from_f64(1e9)), 1e9);
     }
 
@@ -299,7 +363,10 @@ mod tests {
         let a = I16F16::from_num(1.5);
         let b = I16F16::from_num(-2.25);
         assert_eq!(a.mul(b), I16F16::from_num(-3.375));
-        assert_eq!(I16F16::from_bits(-1).mul(I16F16::from_num(0.5)), I16F16::ZERO);
+        assert_eq!(
+            I16F16::from_bits(-1).mul(I16F16::from_num(0.5)),
+            I16F16::ZERO
+        );
         assert_eq!(I16F16::MAX.mul(I16F16::MAX), I16F16::MAX);
         let d = [I16F16::from_num(3), I16F16::from_num(4)];
         assert_eq!(I16F16::dot(&d, &d), I16F16::from_num(25));

@@ -17,7 +17,7 @@ pub struct FloatGains<F> {
 }
 
 macro_rules! float_backend {
-    ($F:ty, $name:literal, $max_exponent:literal, $state_exponent:literal, $min_gain:expr) => {
+    ($F:ty, $Bits:ty, $name:literal, $max_exponent:literal, $state_exponent:literal, $min_gain:expr) => {
         impl Sealed for $F {}
 
         impl Scalar for $F {
@@ -25,6 +25,7 @@ macro_rules! float_backend {
             type Gains = FloatGains<$F>;
             type Factor = $F;
             type Coef = $F;
+            type Band = $Bits;
 
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -110,6 +111,16 @@ macro_rules! float_backend {
                 state.abs() <= bound
             }
             #[inline]
+            fn band(bound: Self) -> $Bits {
+                bound.to_bits() << 1
+            }
+            #[inline(always)]
+            fn in_band(state: Self, band: $Bits) -> bool {
+                // The sign shifted out, the bits of a magnitude order as the magnitude
+                // (±0 is 0; NaN is above +∞, so never inside a finite or infinite band).
+                (state.to_bits() << 1) <= band
+            }
+            #[inline]
             fn coef(value: f64) -> Self::Coef {
                 Self::from_f64(value)
             }
@@ -160,5 +171,5 @@ macro_rules! float_backend {
 
 // Positions up to 2^64 (f32) and 2^500 (f64); states up to 2^120 and 2^1000, which leaves
 // 2^56 and 2^500 for the transient growth of a spring (see `Tuning::growth`).
-float_backend!(f32, "f32", 64, 120, f32::MIN_POSITIVE);
-float_backend!(f64, "f64", 500, 1000, f64::MIN_POSITIVE);
+float_backend!(f32, u32, "f32", 64, 120, f32::MIN_POSITIVE);
+float_backend!(f64, u64, "f64", 500, 1000, f64::MIN_POSITIVE);

@@ -169,6 +169,19 @@ pub trait Scalar:
     /// unsigned comparison).
     fn within(state: Self::State, bound: Self::State) -> bool;
 
+    /// A rest bound `b ≥ 0` prepared for [`Scalar::in_band`] (set-up only): for floats
+    /// the bits of `b` shifted left by one, for fixed point `b` and `2b`.
+    #[doc(hidden)]
+    type Band: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+    /// `bound` (`0 ≤ bound ≤ STATE_MAX/2`, not NaN) prepared for [`Scalar::in_band`].
+    #[doc(hidden)]
+    fn band(bound: Self::State) -> Self::Band;
+    /// `|state| ≤ bound` for a band from [`Scalar::band`], exactly as
+    /// [`Scalar::within`]: one integer comparison (floats compare the magnitudes' bits,
+    /// which order like the magnitudes; NaN is never inside).
+    #[doc(hidden)]
+    fn in_band(state: Self::State, band: Self::Band) -> bool;
+
     /// One step of a spring toward zero, from offset `x` and kept step velocity
     /// `v = ũ`: `u = ũ − C_k·x; x += u; ũ = u − C_d·u`.
     ///
@@ -220,7 +233,11 @@ mod tests {
             let (k2, d2) = S::gains_to_f64(&g);
             // One shared exponent: each gain is exact to 2^−29 of the larger one.
             let tolerance = k.max(d) * 2f64.powi(-29);
-            assert!((k2 - k).abs() <= tolerance && (d2 - d).abs() <= tolerance, "{}", S::NAME);
+            assert!(
+                (k2 - k).abs() <= tolerance && (d2 - d).abs() <= tolerance,
+                "{}",
+                S::NAME
+            );
         }
         assert_eq!(S::from_f64(f64::NAN).to_f64(), 0.0);
     }

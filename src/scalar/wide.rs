@@ -128,6 +128,216 @@ macro_rules! wide_arithmetic {
 wide_arithmetic!(narrow, i32, u32, i64, u64);
 wide_arithmetic!(broad, i64, u64, i128, u128);
 
+/// A gain prepared at set-up for the fast path of the step, [`narrow_step::product`].
+///
+/// It stands for `C = mantissa / 2^(32 + k)` with `0 < mantissa < 2³¹` and
+/// `2 ≤ k ≤ 31` (`2⁻³³ ≤ C < 2⁻³`), or `C = 0`: the gains of a spring stepped at a
+/// kilohertz rate and of most UI springs. `bias = 2^k − 1`; `scale = 2^(32 − k)` ends
+/// the shift by `k` with a long multiply where that is cheaper than a 64-bit shift (ARM
+/// with `umull`), `k` and `32 − k` end it with two 32-bit shifts elsewhere.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct FastFactor<M> {
+    pub(crate) mantissa: M,
+    pub(crate) bias: M,
+    pub(crate) scale: M,
+    pub(crate) k: Shift,
+    pub(crate) complement: Shift,
+}
+
+/// A shift amount below 32. As an enum its loads carry their range, so a shift by it
+/// needs no `& 31` (a Cortex-M0 would spend two instructions on each).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[repr(u8)]
+#[rustfmt::skip]
+pub(crate) enum Shift {
+    #[default]
+    S0 = 0, S1, S2, S3, S4, S5, S6, S7, S8, S9, S10, S11, S12, S13, S14, S15, S16, S17,
+    S18, S19, S20, S21, S22, S23, S24, S25, S26, S27, S28, S29, S30, S31,
+}
+
+impl Shift {
+    /// `n` as a `Shift`, for `n < 32`.
+    fn new(n: u32) -> Shift {
+        use Shift::*;
+        #[rustfmt::skip]
+        const ALL: [Shift; 32] = [
+            S0, S1, S2, S3, S4, S5, S6, S7, S8, S9, S10, S11, S12, S13, S14, S15, S16, S17,
+            S18, S19, S20, S21, S22, S23, S24, S25, S26, S27, S28, S29, S30, S31,
+        ];
+        ALL[n as usize & 31]
+    }
+
+    #[inline(always)]
+    pub(crate) fn get(self) -> u32 {
+        self as u32
+    }
+}
+
+/// Both gains of a spring prepared for the fast path, and the bound on the state under
+/// which that path cannot overflow: `headroom` is `2³⁰` when both gains have a fast
+/// form and 0 (no state passes) otherwise.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct FastGains<M> {
+    pub(crate) stiffness: FastFactor<M>,
+    pub(crate) damping: FastFactor<M>,
+    pub(crate) headroom: M,
+}
+
+/// How the fast path multiplies and shifts, chosen per target (every mode computes the
+/// same values, and the tests run all of them on the host):
+/// - `NATIVE`: 64-bit multiplies and shifts (64-bit machines);
+/// - `SCALE`: ARM with a long multiply (`umull`/`smlal`: all but ARMv6-M and ARMv8-M
+///   Baseline), where the shift by `k` is cheaper as a multiply by `2^(32−k)`;
+/// - `SMALL`: a multiplier of 32×32 → 32 bits only (Cortex-M0): long products from
+///   16-bit halves, the shift as two 32-bit shifts.
+pub(crate) mod mode {
+    pub(crate) const NATIVE: u8 = 0;
+    pub(crate) const SCALE: u8 = 1;
+    pub(crate) const SMALL: u8 = 2;
+    pub(crate) const TARGET: u8 = if cfg!(no_long_multiply) {
+        SMALL
+    } else if cfg!(target_arch = "arm") {
+        SCALE
+    } else {
+        NATIVE
+    };
+}
+
+impl FastGains<i32> {
+    /// The fast form of the narrow gains `(mantissa, shift)`, or none (headroom 0).
+    pub(crate) fn narrow(stiffness: (i32, i32), damping: (i32, i32)) -> Self {
+        let factor = |(m, shift): (i32, i32)| -> Option<FastFactor<i32>> {
+            // C = 0: any form gives 0; take k = 2.
+            let (m, k) = if m == 0 { (0, 2) } else { (m, shift - 32) };
+            if m < 0 || !(2..=31).contains(&k) {
+                return None;
+            }
+            let k = k as u32;
+            Some(FastFactor {
+                mantissa: m,
+                bias: ((1u32 << k) - 1) as i32,
+                scale: 1i32 << (32 - k),
+                k: Shift::new(k),
+                complement: Shift::new(32 - k),
+            })
+        };
+        match (factor(stiffness), factor(damping)) {
+            (Some(stiffness), Some(damping)) => FastGains {
+                stiffness,
+                damping,
+                headroom: 1 << 30,
+            },
+            _ => FastGains::default(),
+        }
+    }
+}
+
+/// The step's fast path for the narrow state (`I16F16`).
+pub(crate) mod narrow_step {
+    use super::{FastFactor, FastGains, mode};
+
+    /// `a·m` for `0 ≤ m < 2³¹` as `(low, high)` words, signed or not, on a Cortex-M0,
+    /// which multiplies 32×32 → 32 bits only: four products of 16-bit halves
+    /// (`__aeabi_lmul` would take all 64×64 bits).
+    macro_rules! long_multiply {
+        ($name:ident, $A:ty) => {
+            #[inline(always)]
+            fn $name<const MODE: u8>(a: $A, m: i32) -> (u32, $A) {
+                let (m0, m1) = ((m as u32) & 0xffff, (m as u32) >> 16);
+                // `a1` keeps the sign of a signed `a`.
+                let (a0, a1) = ((a as u32) & 0xffff, a >> 16);
+                let low = a0 * m0;
+                let high = a1 * m1 as $A;
+                // a1·m0 fits 32 bits (signed: |a1| ≤ 2^15), a0·m1 < 2^31; each lands
+                // 16 bits up, its top half in the high word.
+                let p = a1 * m0 as $A;
+                let (low, c) = low.overflowing_add((p as u32) << 16);
+                let high = high.wrapping_add(p >> 16).wrapping_add(c as $A);
+                let p = a0 * m1;
+                let (low, c) = low.overflowing_add(p << 16);
+                let high = high.wrapping_add((p >> 16) as $A).wrapping_add(c as $A);
+                (low, high)
+            }
+        };
+    }
+    long_multiply!(umul, u32);
+    long_multiply!(smul, i32);
+
+    /// `x·C` rounded toward zero (`AWAY = false`) or away from zero (`AWAY = true`),
+    /// for a gain `C = m/2^(32+k)` in fast form: the same value as
+    /// `narrow::mul_shift::<AWAY>(x, m, 32 + k)`.
+    ///
+    /// With `p = x·m` and `s = 32 + k`, the rounded quotient is `⌊(p + B)/2^s⌋` with
+    /// `B = 2^s − 1` when it rounds up (`p < 0` toward zero, `p ≥ 0` away from it;
+    /// `m ≥ 0`, so the sign of `p` is the sign of `x` where `p ≠ 0`) and `B = 0`
+    /// otherwise. `B`'s low word is the sign mask and its high word `2^k − 1` masked,
+    /// so `t = ⌊(p + B)/2^32⌋ = xₕ·m + ⌊(xₗ·m + B)/2^32⌋` takes one `umlal` and one
+    /// `smlal` on a Cortex-M4, and the result is `⌊t/2^k⌋`.
+    #[inline(always)]
+    pub(crate) fn product<const AWAY: bool>(x: i64, f: &FastFactor<i32>) -> i64 {
+        product_in::<AWAY, { mode::TARGET }>(x, f)
+    }
+
+    /// [`product`] computed the way `MODE` says.
+    #[inline(always)]
+    pub(crate) fn product_in<const AWAY: bool, const MODE: u8>(x: i64, f: &FastFactor<i32>) -> i64 {
+        let (xh, xl) = ((x >> 32) as i32, x as u32);
+        let negative = (xh >> 31) as u32;
+        let up = if AWAY { !negative } else { negative };
+        if MODE == mode::SMALL {
+            // xₗ·m < 2^63 and B < 2^63 (k ≤ 31): no carry out of the high word.
+            let (low, high) = umul::<MODE>(xl, f.mantissa);
+            let (_, c) = low.overflowing_add(up);
+            let high = high.wrapping_add(f.bias as u32 & up).wrapping_add(c as u32);
+            let (tl, th) = smul::<MODE>(xh, f.mantissa);
+            let (tl, c) = tl.overflowing_add(high);
+            let th = th.wrapping_add(c as i32);
+            // ⌊t/2^k⌋ in two 32-bit shifts and an `or`: no call to `__aeabi_lasr`.
+            let ql = (tl >> f.k.get()) | ((th as u32) << f.complement.get());
+            let qh = th >> f.k.get();
+            return ((qh as i64) << 32) | ql as i64;
+        }
+        // B as a 64-bit word; xₗ·m < 2^63 and B < 2^63 (k ≤ 31): the sum fits (`umlal`).
+        let bias = ((((f.bias as u32) & up) as u64) << 32) | up as u64;
+        let low = xl as u64 * f.mantissa as u32 as u64 + bias;
+        let t = xh as i64 * f.mantissa as i64 + (low >> 32) as i64;
+        if MODE == mode::SCALE {
+            // ⌊t/2^k⌋ = tₕ·2^(32−k) + ⌊tₗ·2^(32−k)/2^32⌋ (2^(32−k) ≤ 2^30): `umull` and
+            // `smlal`, cheaper than a 64-bit shift by a variable amount.
+            let (th, tl) = ((t >> 32) as i32, t as u32);
+            th as i64 * f.scale as i64 + ((tl as u64 * f.scale as u32 as u64) >> 32) as i64
+        } else {
+            t >> f.k.get()
+        }
+    }
+
+    /// One step `u = ũ − C_k·x; x += u; ũ = u − C_d·u` in the fast form, or `false`
+    /// (nothing changed) when the gains have none or the state is outside the
+    /// headroom.
+    ///
+    /// With `|x|, |ũ| < 2^61` (a state of up to 2²¹ units) and both gains below 2⁻³:
+    /// `|C_k·x| < 2^58`, `|u| < 2^62`, `|x + u| < 2^63`, and `C_d·u` rounded away from
+    /// zero lies between 0 and `u`: nothing can overflow, so plain adds give the
+    /// saturating ones' results without their tests.
+    #[inline(always)]
+    pub(crate) fn advance(g: &FastGains<i32>, x: &mut i64, v: &mut i64) -> bool {
+        let (x0, v0) = (*x, *v);
+        // |s| < 2^61 ⟺ sₕ + 2^29 < 2^30 (unsigned); both at once with an `or`.
+        let probe =
+            ((x0 >> 32) as u32).wrapping_add(1 << 29) | ((v0 >> 32) as u32).wrapping_add(1 << 29);
+        if probe >= g.headroom as u32 {
+            return false;
+        }
+        let u = v0.wrapping_sub(product::<false>(x0, &g.stiffness));
+        *x = x0.wrapping_add(u);
+        *v = u.wrapping_sub(product::<true>(u, &g.damping));
+        true
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -141,7 +351,11 @@ mod tests {
             } else {
                 let d = 1i128 << shift;
                 let t = p / d; // toward zero
-                if away && t * d != p { t + p.signum() } else { t }
+                if away && t * d != p {
+                    t + p.signum()
+                } else {
+                    t
+                }
             }
         } else {
             p.saturating_mul(1i128 << (-shift))
@@ -163,8 +377,14 @@ mod tests {
             let m = (next() as i32) >> (next() % 32);
             let m = if m == i32::MIN { 0 } else { m };
             let shift = (next() % 110) as i32 - 12;
-            assert_eq!(narrow::mul_shift::<false>(x, m, shift), reference(x, m, shift, false));
-            assert_eq!(narrow::mul_shift::<true>(x, m, shift), reference(x, m, shift, true));
+            assert_eq!(
+                narrow::mul_shift::<false>(x, m, shift),
+                reference(x, m, shift, false)
+            );
+            assert_eq!(
+                narrow::mul_shift::<true>(x, m, shift),
+                reference(x, m, shift, true)
+            );
         }
         for &x in &[i64::MIN, i64::MAX, -1, 1, 0] {
             for &m in &[-i32::MAX, i32::MAX, 1, -1, 0] {
@@ -182,10 +402,113 @@ mod tests {
         }
     }
 
+    /// xorshift64: reproducible inputs without a dependency.
+    fn rng(mut seed: u64) -> impl FnMut() -> u64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        }
+    }
+
+    #[test]
+    fn fast_product_matches_mul_shift() {
+        let mut next = rng(0x2545_f491_4f6c_dd1d);
+        let mut checked = 0;
+        for i in 0..400_000u32 {
+            let x = next() as i64 >> (next() % 64);
+            let x = if i % 7 == 0 {
+                [i64::MIN, i64::MAX, -1, 0, 1][i as usize % 5]
+            } else {
+                x
+            };
+            let shift = 34 + (next() % 30) as i32; // 34..=63
+            let m = if i % 11 == 0 {
+                0
+            } else {
+                (1 << 30) | (next() as i32 & 0x3fff_ffff)
+            };
+            let m = if i % 13 == 0 { i32::MAX } else { m };
+            let fast = FastGains::narrow((m, shift), (m, shift));
+            assert_eq!(fast.headroom, 1 << 30, "{m} {shift}");
+            let f = fast.stiffness;
+            let (down, up) = (
+                narrow::mul_shift::<false>(x, m, shift),
+                narrow::mul_shift::<true>(x, m, shift),
+            );
+            use narrow_step::product_in;
+            assert_eq!(product_in::<false, { mode::NATIVE }>(x, &f), down);
+            assert_eq!(product_in::<true, { mode::NATIVE }>(x, &f), up);
+            assert_eq!(product_in::<false, { mode::SCALE }>(x, &f), down);
+            assert_eq!(product_in::<true, { mode::SCALE }>(x, &f), up);
+            assert_eq!(
+                product_in::<false, { mode::SMALL }>(x, &f),
+                down,
+                "{x} {m} {shift}"
+            );
+            assert_eq!(product_in::<true, { mode::SMALL }>(x, &f), up);
+            checked += 1;
+        }
+        assert_eq!(checked, 400_000);
+    }
+
+    #[test]
+    fn fast_step_is_the_saturating_step_where_it_runs() {
+        let general = |(km, ks): (i32, i32), (dm, ds): (i32, i32), x: &mut i64, v: &mut i64| {
+            let u = v.saturating_sub(narrow::mul_shift::<false>(*x, km, ks));
+            *x = x.saturating_add(u);
+            *v = u.saturating_sub(narrow::mul_shift::<true>(u, dm, ds));
+        };
+        let mut next = rng(0x9e37_79b9_7f4a_7c15);
+        let (mut fast_runs, mut refusals) = (0, 0);
+        for i in 0..400_000u32 {
+            let gain = |next: &mut dyn FnMut() -> u64| {
+                let r = next();
+                if r % 9 == 0 {
+                    (0, 0)
+                } else {
+                    (
+                        (1 << 30) | (r as i32 & 0x3fff_ffff),
+                        28 + (r >> 40) as i32 % 40,
+                    )
+                }
+            };
+            let (k, d) = (gain(&mut next), gain(&mut next));
+            let fast = FastGains::narrow(k, d);
+            let x0 = next() as i64 >> (next() % 64);
+            let v0 = next() as i64 >> (next() % 64);
+            let (x0, v0) = if i % 17 == 0 {
+                (i64::MAX, i64::MIN)
+            } else {
+                (x0, v0)
+            };
+            let (mut x, mut v) = (x0, v0);
+            let (mut gx, mut gv) = (x0, v0);
+            general(k, d, &mut gx, &mut gv);
+            if narrow_step::advance(&fast, &mut x, &mut v) {
+                fast_runs += 1;
+                assert_eq!((x, v), (gx, gv), "{k:?} {d:?} {x0} {v0}");
+            } else {
+                refusals += 1;
+                assert_eq!((x, v), (x0, v0));
+            }
+        }
+        assert!(
+            fast_runs > 100_000 && refusals > 10_000,
+            "{fast_runs} {refusals}"
+        );
+    }
+
     #[test]
     fn broad_agrees_with_narrow_scaled_up() {
         // The same values in the upper halves of the wide words give the same quotient.
-        for (x, m, s) in [(12345i64, 1 << 20, 40), (-98765, 3, 2), (-1, 1, 0), (7, -5, 1)] {
+        for (x, m, s) in [
+            (12345i64, 1 << 20, 40),
+            (-98765, 3, 2),
+            (-1, 1, 0),
+            (7, -5, 1),
+        ] {
             let n = narrow::mul_shift::<false>(x, m, s) as i128;
             let b = broad::mul_shift::<false>((x as i128) << 32, m as i64, s + 32);
             assert_eq!(n, b, "{x} {m} {s}");
@@ -199,9 +522,15 @@ mod tests {
     fn encoding_keeps_thirty_one_bits() {
         for v in [3.9e-7, 1.0, 3.999, 0.1, 1e-12, 2.5e6, -0.75] {
             let (m, s) = narrow::encode(v);
-            assert!(((narrow::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-30), "{v}");
+            assert!(
+                ((narrow::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-30),
+                "{v}"
+            );
             let (m, s) = broad::encode(v);
-            assert!(((broad::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-62), "{v}");
+            assert!(
+                ((broad::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-62),
+                "{v}"
+            );
         }
         assert_eq!(narrow::encode(0.0), (0, 0));
         assert_eq!(narrow::encode(f64::NAN), (0, 0));
