@@ -144,7 +144,7 @@ impl<S: Scalar> RestBand<S> {
         // Box |x| ≤ p/√2, |u| ≤ p·√C_k/√2: an undamped spring inside it has an amplitude
         // below p·(1 + θ/4) (see `RestThreshold`).
         let p = threshold.position * core::f64::consts::FRAC_1_SQRT_2;
-        let by_amplitude = p * crate::math::sqrt(tuning.stiffness());
+        let by_amplitude = p * tuning.root_stiffness();
         let by_speed = threshold.velocity * tuning.dt();
         let u = if by_amplitude < by_speed {
             by_amplitude

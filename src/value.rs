@@ -74,32 +74,46 @@ pub(crate) fn gains_of<S: Scalar>(tuning: &Tuning) -> Result<S::Gains, Error> {
     })
 }
 
+/// [`Scalar::MAX`] in the backend's type (a constant: the conversion folds).
+#[inline(always)]
+fn max_position<S: Scalar>() -> S {
+    S::from_f64(S::MAX)
+}
+
 /// `value` as a position, or why not: not finite, or beyond [`Scalar::MAX`].
+///
+/// The test runs in the backend's own arithmetic (an `f32` firmware links no `f64`
+/// comparison for it); only the error is built in `f64`.
 pub(crate) fn check_position<S: Scalar>(value: S, parameter: Parameter) -> Result<S, Error> {
+    // NaN compares false, ±∞ is above the bound; fixed point always passes (its range
+    // is the bound).
+    if value.abs() <= max_position::<S>() {
+        return Ok(value);
+    }
     let v = value.to_f64();
-    if !v.is_finite() {
-        Err(Error::NotFinite { parameter })
-    } else if v.abs() > S::MAX {
-        Err(Error::OutOfRange {
+    Err(if !v.is_finite() {
+        Error::NotFinite { parameter }
+    } else {
+        Error::OutOfRange {
             parameter,
             value: v,
             bound: Bound::MagnitudeAtMost { max: S::MAX },
-        })
-    } else {
-        Ok(value)
-    }
+        }
+    })
 }
 
 /// `value` made usable by an infallible setter: `None` for NaN, else saturated to
-/// [`Scalar::MAX`].
+/// [`Scalar::MAX`]. In the backend's arithmetic, as [`check_position`].
 pub(crate) fn saturate<S: Scalar>(value: S) -> Option<S> {
-    let v = value.to_f64();
-    if v.is_nan() {
-        None
-    } else if v.abs() > S::MAX {
-        Some(S::from_f64(if v > 0.0 { S::MAX } else { -S::MAX }))
-    } else {
+    let max = max_position::<S>();
+    if value.abs() <= max {
         Some(value)
+    } else if value > S::ZERO {
+        Some(max)
+    } else if value < S::ZERO {
+        Some(max.neg())
+    } else {
+        None // NaN
     }
 }
 

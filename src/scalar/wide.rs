@@ -239,32 +239,26 @@ impl FastGains<i32> {
 pub(crate) mod narrow_step {
     use super::{FastFactor, FastGains, mode};
 
-    /// `a·m` for `0 ≤ m < 2³¹` as `(low, high)` words, signed or not, on a Cortex-M0,
-    /// which multiplies 32×32 → 32 bits only: four products of 16-bit halves
+    /// `a·m` for `0 ≤ m < 2³¹`, exactly, on a Cortex-M0, which multiplies 32×32 → 32
+    /// bits only: four products of 16-bit halves, each placed with one 64-bit add
     /// (`__aeabi_lmul` would take all 64×64 bits).
-    macro_rules! long_multiply {
-        ($name:ident, $A:ty) => {
-            #[inline(always)]
-            fn $name<const MODE: u8>(a: $A, m: i32) -> (u32, $A) {
-                let (m0, m1) = ((m as u32) & 0xffff, (m as u32) >> 16);
-                // `a1` keeps the sign of a signed `a`.
-                let (a0, a1) = ((a as u32) & 0xffff, a >> 16);
-                let low = a0 * m0;
-                let high = a1 * m1 as $A;
-                // a1·m0 fits 32 bits (signed: |a1| ≤ 2^15), a0·m1 < 2^31; each lands
-                // 16 bits up, its top half in the high word.
-                let p = a1 * m0 as $A;
-                let (low, c) = low.overflowing_add((p as u32) << 16);
-                let high = high.wrapping_add(p >> 16).wrapping_add(c as $A);
-                let p = a0 * m1;
-                let (low, c) = low.overflowing_add(p << 16);
-                let high = high.wrapping_add((p >> 16) as $A).wrapping_add(c as $A);
-                (low, high)
-            }
-        };
+    #[inline(always)]
+    fn umul_small(a: u32, m: i32) -> u64 {
+        let (m0, m1) = ((m as u32) & 0xffff, (m as u32) >> 16);
+        let (a0, a1) = (a & 0xffff, a >> 16);
+        let ends = ((a1 * m1) as u64) << 32 | (a0 * m0) as u64;
+        ends + (((a1 * m0) as u64) << 16) + (((a0 * m1) as u64) << 16)
     }
-    long_multiply!(umul, u32);
-    long_multiply!(smul, i32);
+
+    /// `a·m` for a signed `a` and `0 ≤ m < 2³¹`, as [`umul_small`].
+    #[inline(always)]
+    fn smul_small(a: i32, m: i32) -> i64 {
+        let (m0, m1) = ((m as u32) & 0xffff, (m as u32) >> 16);
+        // `a1` keeps the sign; |a1·m0| < 2^31.
+        let (a0, a1) = (a as u32 & 0xffff, a >> 16);
+        let ends = (((a1 * m1 as i32) as i64) << 32) | (a0 * m0) as i64;
+        ends + (((a1 * m0 as i32) as i64) << 16) + (((a0 * m1) as i64) << 16)
+    }
 
     /// `x·C` rounded toward zero (`AWAY = false`) or away from zero (`AWAY = true`),
     /// for a gain `C = m/2^(32+k)` in fast form: the same value as
@@ -288,13 +282,10 @@ pub(crate) mod narrow_step {
         let negative = (xh >> 31) as u32;
         let up = if AWAY { !negative } else { negative };
         if MODE == mode::SMALL {
-            // xₗ·m < 2^63 and B < 2^63 (k ≤ 31): no carry out of the high word.
-            let (low, high) = umul::<MODE>(xl, f.mantissa);
-            let (_, c) = low.overflowing_add(up);
-            let high = high.wrapping_add(f.bias as u32 & up).wrapping_add(c as u32);
-            let (tl, th) = smul::<MODE>(xh, f.mantissa);
-            let (tl, c) = tl.overflowing_add(high);
-            let th = th.wrapping_add(c as i32);
+            let bias = ((((f.bias as u32) & up) as u64) << 32) | up as u64;
+            let low = umul_small(xl, f.mantissa) + bias;
+            let t = smul_small(xh, f.mantissa) + (low >> 32) as i64;
+            let (th, tl) = ((t >> 32) as i32, t as u32);
             // ⌊t/2^k⌋ in two 32-bit shifts and an `or`: no call to `__aeabi_lasr`.
             let ql = (tl >> f.k.get()) | ((th as u32) << f.complement.get());
             let qh = th >> f.k.get();
