@@ -14,6 +14,16 @@ use crate::tuning::Tuning;
 use crate::value::{check_position, gains_of, saturate};
 use heapless::Vec;
 
+/// Whether the target steps a batch several values at a time (SIMD), which a branch per
+/// value would prevent: not the microcontrollers, whose scalar loop is cheapest with a
+/// branch on the first rest test that fails.
+const VECTOR_UNITS: bool = cfg!(any(
+    target_arch = "x86_64",
+    target_arch = "x86",
+    target_arch = "aarch64",
+    target_arch = "wasm32"
+));
+
 /// A value of a [`SpringBatch`]: a slot and the generation of the value in it, so that an
 /// index of a removed value never names the value that took its slot.
 ///
@@ -521,19 +531,47 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             let (offsets, velocities) = (&mut self.offset[..used], &mut self.step_velocity[..used]);
             let live = &self.live[..used];
             let settled = &mut self.settled;
-            for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate() {
-                for k in 0..D {
-                    S::advance(&gains, &mut x[k], &mut u[k]);
+            let mut settle = |slot: usize, x: &mut [S::State; D], u: &mut [S::State; D]| {
+                // A removed slot keeps a zero state, inside every band.
+                if live[slot] {
+                    *x = [S::STATE_ZERO; D];
+                    *u = [S::STATE_ZERO; D];
+                    // Cannot fail: at most N slots settle.
+                    let _ = settled.push(slot as u16);
                 }
-                // The first component outside its band ends the test.
-                if (0..D).all(|k| band.contains(x[k], u[k])) {
+            };
+            if VECTOR_UNITS {
+                // A machine with vector units steps the values several at a time: the
+                // first pass has no branch, only an `or` of the tests, and a second
+                // pass settles, in the rare step where some value is inside its band.
+                let mut any = false;
+                for (x, u) in offsets.iter_mut().zip(velocities.iter_mut()) {
+                    let mut inside = true;
+                    for k in 0..D {
+                        S::advance(&gains, &mut x[k], &mut u[k]);
+                        inside &= band.contains_all(x[k], u[k]);
+                    }
+                    any |= inside;
+                }
+                if any {
                     core::hint::cold_path();
-                    // A removed slot keeps a zero state, inside every band.
-                    if live[slot] {
-                        *x = [S::STATE_ZERO; D];
-                        *u = [S::STATE_ZERO; D];
-                        // Cannot fail: at most N slots settle.
-                        let _ = settled.push(slot as u16);
+                    for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate()
+                    {
+                        if (0..D).all(|k| band.contains(x[k], u[k])) {
+                            settle(slot, x, u);
+                        }
+                    }
+                }
+            } else {
+                // A microcontroller steps one value at a time: a branch on the first
+                // test that fails is the cheapest test.
+                for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate() {
+                    for k in 0..D {
+                        S::advance(&gains, &mut x[k], &mut u[k]);
+                    }
+                    if (0..D).all(|k| band.contains(x[k], u[k])) {
+                        core::hint::cold_path();
+                        settle(slot, x, u);
                     }
                 }
             }

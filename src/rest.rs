@@ -174,4 +174,10 @@ impl<S: Scalar> RestBand<S> {
     pub(crate) fn contains(&self, offset: S::State, step_velocity: S::State) -> bool {
         S::in_band(step_velocity, self.step_velocity) && S::in_band(offset, self.offset)
     }
+
+    /// [`RestBand::contains`] without a branch, for loops that a compiler vectorises.
+    #[inline(always)]
+    pub(crate) fn contains_all(&self, offset: S::State, step_velocity: S::State) -> bool {
+        S::in_band(step_velocity, self.step_velocity) & S::in_band(offset, self.offset)
+    }
 }
