@@ -13,7 +13,7 @@
 //! The `fixed` crate provides the types, the conversions and the saturating add; the
 //! products are taken on the raw bits, with the rounding chosen in the parent module.
 
-use super::wide::{FastGains, broad, narrow, narrow_step};
+use super::wide::{FastGains, broad, broad_step, narrow, narrow_step};
 use super::{Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
@@ -306,8 +306,11 @@ fixed_backend!(
     narrow_q32,
     32,
     "I32F32",
-    |_: FixedFactor<i64>, _: FixedFactor<i64>| FastGains::default(),
-    |_: &FastGains<i64>, _: &mut i128, _: &mut i128| false
+    |k: FixedFactor<i64>, d: FixedFactor<i64>| FastGains::broad(
+        (k.mantissa, k.shift),
+        (d.mantissa, d.shift)
+    ),
+    broad_step::advance
 );
 
 #[cfg(test)]

@@ -235,6 +235,70 @@ impl FastGains<i32> {
     }
 }
 
+impl FastGains<i64> {
+    /// The fast form of the broad gains `(mantissa, shift)`: as [`FastGains::narrow`]
+    /// with 64-bit words, `C = mantissa / 2^(64 + k)`, `2 ≤ k ≤ 63`; `scale` unused.
+    pub(crate) fn broad(stiffness: (i64, i32), damping: (i64, i32)) -> Self {
+        let factor = |(m, shift): (i64, i32)| -> Option<FastFactor<i64>> {
+            let (m, k) = if m == 0 { (0, 2) } else { (m, shift - 64) };
+            if m < 0 || !(2..=63).contains(&k) {
+                return None;
+            }
+            let k = k as u32;
+            Some(FastFactor {
+                mantissa: m,
+                bias: ((1u64 << k) - 1) as i64,
+                scale: 0,
+                k: Shift::new(k & 31),
+                complement: Shift::new(k >> 5),
+            })
+        };
+        match (factor(stiffness), factor(damping)) {
+            (Some(stiffness), Some(damping)) => FastGains {
+                stiffness,
+                damping,
+                headroom: 1 << 62,
+            },
+            _ => FastGains::default(),
+        }
+    }
+}
+
+/// The step's fast path for the broad state (`I32F32`): [`narrow_step`] with every word
+/// twice as wide.
+pub(crate) mod broad_step {
+    use super::{FastFactor, FastGains};
+
+    /// `x·C` rounded toward zero or away from it, for a gain in fast form: the value of
+    /// `broad::mul_shift::<AWAY>(x, m, 64 + k)`, as `narrow_step::product`.
+    #[inline(always)]
+    pub(crate) fn product<const AWAY: bool>(x: i128, f: &FastFactor<i64>) -> i128 {
+        let (xh, xl) = ((x >> 64) as i64, x as u64);
+        let negative = (xh >> 63) as u64;
+        let up = if AWAY { !negative } else { negative };
+        let bias = ((((f.bias as u64) & up) as u128) << 64) | up as u128;
+        let low = xl as u128 * f.mantissa as u64 as u128 + bias;
+        let t = xh as i128 * f.mantissa as i128 + (low >> 64) as i128;
+        t >> (f.k.get() + 32 * f.complement.get())
+    }
+
+    /// One step in the fast form, or `false` (nothing changed): as
+    /// `narrow_step::advance`, with `|x|, |ũ| < 2^125`.
+    #[inline(always)]
+    pub(crate) fn advance(g: &FastGains<i64>, x: &mut i128, v: &mut i128) -> bool {
+        let (x0, v0) = (*x, *v);
+        let probe =
+            ((x0 >> 64) as u64).wrapping_add(1 << 61) | ((v0 >> 64) as u64).wrapping_add(1 << 61);
+        if probe >= g.headroom as u64 {
+            return false;
+        }
+        let u = v0.wrapping_sub(product::<false>(x0, &g.stiffness));
+        *x = x0.wrapping_add(u);
+        *v = u.wrapping_sub(product::<true>(u, &g.damping));
+        true
+    }
+}
+
 /// The step's fast path for the narrow state (`I16F16`).
 pub(crate) mod narrow_step {
     use super::{FastFactor, FastGains, mode};
@@ -487,6 +551,81 @@ mod tests {
         }
         assert!(
             fast_runs > 100_000 && refusals > 10_000,
+            "{fast_runs} {refusals}"
+        );
+    }
+
+    #[test]
+    fn broad_fast_product_matches_mul_shift() {
+        let mut next = rng(0x1234_5678_9abc_def1);
+        for i in 0..200_000u32 {
+            let x = ((next() as i128) << 64 | next() as i128) >> (next() % 128);
+            let x = if i % 7 == 0 {
+                [i128::MIN, i128::MAX, -1, 0, 1][i as usize % 5]
+            } else {
+                x
+            };
+            let shift = 66 + (next() % 62) as i32; // 66..=127
+            let m = if i % 11 == 0 {
+                0
+            } else {
+                (1 << 62) | (next() as i64 & 0x3fff_ffff_ffff_ffff)
+            };
+            let m = if i % 13 == 0 { i64::MAX } else { m };
+            let fast = FastGains::broad((m, shift), (m, shift));
+            assert_eq!(fast.headroom, 1 << 62, "{m} {shift}");
+            let f = fast.stiffness;
+            assert_eq!(
+                broad_step::product::<false>(x, &f),
+                broad::mul_shift::<false>(x, m, shift)
+            );
+            assert_eq!(
+                broad_step::product::<true>(x, &f),
+                broad::mul_shift::<true>(x, m, shift)
+            );
+        }
+    }
+
+    #[test]
+    fn broad_fast_step_is_the_saturating_step_where_it_runs() {
+        let mut next = rng(0x0bad_cafe_f00d_1234);
+        let (mut fast_runs, mut refusals) = (0, 0);
+        for i in 0..200_000u32 {
+            let gain = |next: &mut dyn FnMut() -> u64| {
+                let r = next();
+                if r % 9 == 0 {
+                    (0i64, 0)
+                } else {
+                    (
+                        (1 << 62) | (r as i64 & 0x3fff_ffff_ffff_ffff),
+                        60 + (r >> 40) as i32 % 72,
+                    )
+                }
+            };
+            let (k, d) = (gain(&mut next), gain(&mut next));
+            let fast = FastGains::broad(k, d);
+            let wide = |next: &mut dyn FnMut() -> u64| {
+                ((next() as i128) << 64 | next() as i128) >> (next() % 128)
+            };
+            let (x0, v0) = if i % 17 == 0 {
+                (i128::MAX, i128::MIN)
+            } else {
+                (wide(&mut next), wide(&mut next))
+            };
+            let (mut x, mut v) = (x0, v0);
+            let u = v0.saturating_sub(broad::mul_shift::<false>(x0, k.0, k.1));
+            let gx = x0.saturating_add(u);
+            let gv = u.saturating_sub(broad::mul_shift::<true>(u, d.0, d.1));
+            if broad_step::advance(&fast, &mut x, &mut v) {
+                fast_runs += 1;
+                assert_eq!((x, v), (gx, gv), "{k:?} {d:?} {x0} {v0}");
+            } else {
+                refusals += 1;
+                assert_eq!((x, v), (x0, v0));
+            }
+        }
+        assert!(
+            fast_runs > 30_000 && refusals > 10_000,
             "{fast_runs} {refusals}"
         );
     }
