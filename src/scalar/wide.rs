@@ -237,7 +237,9 @@ impl FastGains<i32> {
 
 impl FastGains<i64> {
     /// The fast form of the broad gains `(mantissa, shift)`: as [`FastGains::narrow`]
-    /// with 64-bit words, `C = mantissa / 2^(64 + k)`, `2 ≤ k ≤ 63`; `scale` unused.
+    /// with 64-bit words, `C = mantissa / 2^(64 + k)`, `2 ≤ k ≤ 63`. The 128-bit shift
+    /// by `k` is one shift: `k` holds `k mod 32` and `complement` holds `⌊k/32⌋`, which
+    /// tells the compiler that the amount is below 64 (no masking); `scale` is unused.
     pub(crate) fn broad(stiffness: (i64, i32), damping: (i64, i32)) -> Self {
         let factor = |(m, shift): (i64, i32)| -> Option<FastFactor<i64>> {
             let (m, k) = if m == 0 { (0, 2) } else { (m, shift - 64) };
