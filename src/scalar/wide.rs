@@ -143,6 +143,8 @@ pub(crate) struct FastFactor<M> {
     pub(crate) scale: M,
     pub(crate) k: Shift,
     pub(crate) complement: Shift,
+    /// The mantissa's 16-bit halves, for the products on a Cortex-M0.
+    pub(crate) halves: [u16; 2],
 }
 
 /// A shift amount below 32. As an enum its loads carry their range, so a shift by it
@@ -222,6 +224,7 @@ impl FastGains<i32> {
                 scale: 1i32 << (32 - k),
                 k: Shift::new(k),
                 complement: Shift::new(32 - k),
+                halves: [m as u16, (m >> 16) as u16],
             })
         };
         match (factor(stiffness), factor(damping)) {
@@ -253,6 +256,7 @@ impl FastGains<i64> {
                 scale: 0,
                 k: Shift::new(k & 31),
                 complement: Shift::new(k >> 5),
+                halves: [0, 0],
             })
         };
         match (factor(stiffness), factor(damping)) {
@@ -309,8 +313,8 @@ pub(crate) mod narrow_step {
     /// bits only: four products of 16-bit halves, each placed with one 64-bit add
     /// (`__aeabi_lmul` would take all 64×64 bits).
     #[inline(always)]
-    fn umul_small(a: u32, m: i32) -> u64 {
-        let (m0, m1) = ((m as u32) & 0xffff, (m as u32) >> 16);
+    fn umul_small(a: u32, [m0, m1]: [u16; 2]) -> u64 {
+        let (m0, m1) = (m0 as u32, m1 as u32);
         let (a0, a1) = (a & 0xffff, a >> 16);
         let ends = ((a1 * m1) as u64) << 32 | (a0 * m0) as u64;
         ends + (((a1 * m0) as u64) << 16) + (((a0 * m1) as u64) << 16)
@@ -318,8 +322,8 @@ pub(crate) mod narrow_step {
 
     /// `a·m` for a signed `a` and `0 ≤ m < 2³¹`, as [`umul_small`].
     #[inline(always)]
-    fn smul_small(a: i32, m: i32) -> i64 {
-        let (m0, m1) = ((m as u32) & 0xffff, (m as u32) >> 16);
+    fn smul_small(a: i32, [m0, m1]: [u16; 2]) -> i64 {
+        let (m0, m1) = (m0 as u32, m1 as u32);
         // `a1` keeps the sign; |a1·m0| < 2^31.
         let (a0, a1) = (a as u32 & 0xffff, a >> 16);
         let ends = (((a1 * m1 as i32) as i64) << 32) | (a0 * m0) as i64;
@@ -349,8 +353,8 @@ pub(crate) mod narrow_step {
         let up = if AWAY { !negative } else { negative };
         if MODE == mode::SMALL {
             let bias = ((((f.bias as u32) & up) as u64) << 32) | up as u64;
-            let low = umul_small(xl, f.mantissa) + bias;
-            let t = smul_small(xh, f.mantissa) + (low >> 32) as i64;
+            let low = umul_small(xl, f.halves) + bias;
+            let t = smul_small(xh, f.halves) + (low >> 32) as i64;
             let (th, tl) = ((t >> 32) as i32, t as u32);
             // ⌊t/2^k⌋ in two 32-bit shifts and an `or`: no call to `__aeabi_lasr`.
             let ql = (tl >> f.k.get()) | ((th as u32) << f.complement.get());
