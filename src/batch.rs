@@ -348,9 +348,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         for k in 0..D {
             check_position(target[k], Parameter::Position)?;
             let delta = S::state_sub(self.target[slot][k].widen(), target[k].widen());
-            x[k] = self
-                .start
-                .check(S::state_add(x[k], delta), Parameter::Position)?;
+            x[k] = self.start.check(S::state_add(x[k], delta), Parameter::Position)?;
             u[k] = self
                 .start
                 .check(self.start.shifted(u[k], delta), Parameter::StepVelocity)?;

@@ -159,14 +159,10 @@ macro_rules! fixed_backend {
                 if value.is_nan() {
                     return 0;
                 }
-                let scaled =
-                    value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64 * 4_294_967_296.0;
+                let scaled = value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64
+                    * 4_294_967_296.0;
                 // `as` saturates at the ends of the integer type.
-                let r = if scaled >= 0.0 {
-                    scaled + 0.5
-                } else {
-                    scaled - 0.5
-                };
+                let r = if scaled >= 0.0 { scaled + 0.5 } else { scaled - 0.5 };
                 r as $State
             }
             fn state_to_f64(state: $State) -> f64 {
@@ -246,9 +242,7 @@ macro_rules! fixed_backend {
             }
             #[inline(always)]
             fn mul(self, rhs: Self) -> Self {
-                <$S>::from_bits($narrow_self(
-                    self.to_bits() as $Wide * rhs.to_bits() as $Wide,
-                ))
+                <$S>::from_bits($narrow_self(self.to_bits() as $Wide * rhs.to_bits() as $Wide))
             }
             #[inline(always)]
             fn mul_coef(self, coef: Self::Coef) -> Self {
@@ -275,41 +269,17 @@ macro_rules! fixed_backend {
 }
 
 fixed_backend!(
-    I16F16,
-    i32,
-    i64,
-    u64,
-    i32,
-    I3F29,
-    i64,
-    narrow,
-    narrow_q29,
-    narrow_q16,
-    24,
-    "I16F16",
-    |k: FixedFactor<i32>, d: FixedFactor<i32>| FastGains::narrow(
-        (k.mantissa, k.shift),
-        (d.mantissa, d.shift)
-    ),
+    I16F16, i32, i64, u64, i32, I3F29, i64, narrow, narrow_q29, narrow_q16, 24, "I16F16",
+    |k: FixedFactor<i32>, d: FixedFactor<i32>| {
+        FastGains::narrow((k.mantissa, k.shift), (d.mantissa, d.shift))
+    },
     narrow_step::advance
 );
 fixed_backend!(
-    I32F32,
-    i64,
-    i128,
-    u128,
-    i64,
-    I3F61,
-    i128,
-    broad,
-    narrow_q61,
-    narrow_q32,
-    32,
-    "I32F32",
-    |k: FixedFactor<i64>, d: FixedFactor<i64>| FastGains::broad(
-        (k.mantissa, k.shift),
-        (d.mantissa, d.shift)
-    ),
+    I32F32, i64, i128, u128, i64, I3F61, i128, broad, narrow_q61, narrow_q32, 32, "I32F32",
+    |k: FixedFactor<i64>, d: FixedFactor<i64>| {
+        FastGains::broad((k.mantissa, k.shift), (d.mantissa, d.shift))
+    },
     broad_step::advance
 );
 
@@ -328,10 +298,7 @@ mod tests {
         assert_eq!(I16F16::narrow(i64::MAX), I16F16::MAX);
         assert_eq!(I16F16::narrow(i64::MIN), I16F16::MIN);
         assert_eq!(I32F32::narrow(i128::MIN), I32F32::MIN);
-        assert_eq!(
-            I16F16::state_to_f64(I16F16::state_from_f64(-1234.5)),
-            -1234.5
-        );
+        assert_eq!(I16F16::state_to_f64(I16F16::state_from_f64(-1234.5)), -1234.5);
         assert_eq!(I32F32::state_to_f64(I32F32::state_from_f64(1e9)), 1e9);
     }
 
@@ -366,10 +333,7 @@ mod tests {
         let a = I16F16::from_num(1.5);
         let b = I16F16::from_num(-2.25);
         assert_eq!(a.mul(b), I16F16::from_num(-3.375));
-        assert_eq!(
-            I16F16::from_bits(-1).mul(I16F16::from_num(0.5)),
-            I16F16::ZERO
-        );
+        assert_eq!(I16F16::from_bits(-1).mul(I16F16::from_num(0.5)), I16F16::ZERO);
         assert_eq!(I16F16::MAX.mul(I16F16::MAX), I16F16::MAX);
         let d = [I16F16::from_num(3), I16F16::from_num(4)];
         assert_eq!(I16F16::dot(&d, &d), I16F16::from_num(25));

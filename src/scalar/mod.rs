@@ -233,11 +233,7 @@ mod tests {
             let (k2, d2) = S::gains_to_f64(&g);
             // One shared exponent: each gain is exact to 2^−29 of the larger one.
             let tolerance = k.max(d) * 2f64.powi(-29);
-            assert!(
-                (k2 - k).abs() <= tolerance && (d2 - d).abs() <= tolerance,
-                "{}",
-                S::NAME
-            );
+            assert!((k2 - k).abs() <= tolerance && (d2 - d).abs() <= tolerance, "{}", S::NAME);
         }
         assert_eq!(S::from_f64(f64::NAN).to_f64(), 0.0);
     }

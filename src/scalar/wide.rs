@@ -412,11 +412,7 @@ mod tests {
             } else {
                 let d = 1i128 << shift;
                 let t = p / d; // toward zero
-                if away && t * d != p {
-                    t + p.signum()
-                } else {
-                    t
-                }
+                if away && t * d != p { t + p.signum() } else { t }
             }
         } else {
             p.saturating_mul(1i128 << (-shift))
@@ -438,14 +434,8 @@ mod tests {
             let m = (next() as i32) >> (next() % 32);
             let m = if m == i32::MIN { 0 } else { m };
             let shift = (next() % 110) as i32 - 12;
-            assert_eq!(
-                narrow::mul_shift::<false>(x, m, shift),
-                reference(x, m, shift, false)
-            );
-            assert_eq!(
-                narrow::mul_shift::<true>(x, m, shift),
-                reference(x, m, shift, true)
-            );
+            assert_eq!(narrow::mul_shift::<false>(x, m, shift), reference(x, m, shift, false));
+            assert_eq!(narrow::mul_shift::<true>(x, m, shift), reference(x, m, shift, true));
         }
         for &x in &[i64::MIN, i64::MAX, -1, 1, 0] {
             for &m in &[-i32::MAX, i32::MAX, 1, -1, 0] {
@@ -639,12 +629,7 @@ mod tests {
     #[test]
     fn broad_agrees_with_narrow_scaled_up() {
         // The same values in the upper halves of the wide words give the same quotient.
-        for (x, m, s) in [
-            (12345i64, 1 << 20, 40),
-            (-98765, 3, 2),
-            (-1, 1, 0),
-            (7, -5, 1),
-        ] {
+        for (x, m, s) in [(12345i64, 1 << 20, 40), (-98765, 3, 2), (-1, 1, 0), (7, -5, 1)] {
             let n = narrow::mul_shift::<false>(x, m, s) as i128;
             let b = broad::mul_shift::<false>((x as i128) << 32, m as i64, s + 32);
             assert_eq!(n, b, "{x} {m} {s}");
@@ -658,15 +643,9 @@ mod tests {
     fn encoding_keeps_thirty_one_bits() {
         for v in [3.9e-7, 1.0, 3.999, 0.1, 1e-12, 2.5e6, -0.75] {
             let (m, s) = narrow::encode(v);
-            assert!(
-                ((narrow::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-30),
-                "{v}"
-            );
+            assert!(((narrow::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-30), "{v}");
             let (m, s) = broad::encode(v);
-            assert!(
-                ((broad::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-62),
-                "{v}"
-            );
+            assert!(((broad::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-62), "{v}");
         }
         assert_eq!(narrow::encode(0.0), (0, 0));
         assert_eq!(narrow::encode(f64::NAN), (0, 0));
