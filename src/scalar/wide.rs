@@ -349,7 +349,10 @@ pub(crate) mod narrow_step {
     #[inline(always)]
     pub(crate) fn product_in<const AWAY: bool, const MODE: u8>(x: i64, f: &FastFactor<i32>) -> i64 {
         let (xh, xl) = ((x >> 32) as i32, x as u32);
-        let negative = (xh >> 31) as u32;
+        // The sign mask from the whole word: it lets LLVM fold `!negative` into `mvn`
+        // and `bic` on the Cortex-M4 (from `xh` it builds a compare and an `it` block,
+        // 3 instructions more per step); from `xh` on the Cortex-M0 (6 fewer there).
+        let negative = if MODE == mode::SMALL { (xh >> 31) as u32 } else { (x >> 63) as u32 };
         let up = if AWAY { !negative } else { negative };
         if MODE == mode::SMALL {
             let bias = ((((f.bias as u32) & up) as u64) << 32) | up as u64;
