@@ -24,10 +24,18 @@ fn main() {
          \"value_i16f16\", \"batch16_f32\", \"rope_f32\", \"knob\", \"everything\"))"
     );
 
+    // ARMv6-M (Cortex-M0/M0+/M1) and ARMv8-M Baseline (M23) multiply 32×32 → 32 bits
+    // only: the fixed-point step builds its long products from 16-bit halves there
+    // (`src/scalar/wide.rs`). Rust has no stable `target_feature` cfg for this.
+    println!("cargo::rustc-check-cfg=cfg(no_long_multiply)");
+    let target = env::var("TARGET").unwrap_or_default();
+    if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
+        println!("cargo::rustc-cfg=no_long_multiply");
+    }
+
     if env::var("CARGO_CFG_TARGET_OS").as_deref() != Ok("none") {
         return;
     }
-    let target = env::var("TARGET").unwrap_or_default();
     let layout = if target.starts_with("thumbv6m") {
         "memory/microbit.x"
     } else {

@@ -14,6 +14,16 @@ use crate::tuning::Tuning;
 use crate::value::{check_position, gains_of, saturate};
 use heapless::Vec;
 
+/// Whether the target steps a batch several values at a time (SIMD), which a branch per
+/// value would prevent: not the microcontrollers, whose scalar loop is cheapest with a
+/// branch on the first rest test that fails.
+const VECTOR_UNITS: bool = cfg!(any(
+    target_arch = "x86_64",
+    target_arch = "x86",
+    target_arch = "aarch64",
+    target_arch = "wasm32"
+));
+
 /// A value of a [`SpringBatch`]: a slot and the generation of the value in it, so that an
 /// index of a removed value never names the value that took its slot.
 ///
@@ -519,40 +529,75 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             // slots hold a zero state, which a step leaves at zero.
             let used = self.used;
             let (offsets, velocities) = (&mut self.offset[..used], &mut self.step_velocity[..used]);
-            for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate() {
-                let mut inside = true;
-                for k in 0..D {
-                    S::advance(&gains, &mut x[k], &mut u[k]);
-                    inside &= band.contains(x[k], u[k]);
-                }
-                if inside && self.live[slot] {
+            let live = &self.live[..used];
+            let settled = &mut self.settled;
+            let mut settle = |slot: usize, x: &mut [S::State; D], u: &mut [S::State; D]| {
+                // A removed slot keeps a zero state, inside every band.
+                if live[slot] {
                     *x = [S::STATE_ZERO; D];
                     *u = [S::STATE_ZERO; D];
                     // Cannot fail: at most N slots settle.
-                    let _ = self.settled.push(slot as u16);
+                    let _ = settled.push(slot as u16);
+                }
+            };
+            if VECTOR_UNITS {
+                // A machine with vector units steps the values several at a time: the
+                // first pass has no branch, only an `or` of the tests, and a second
+                // pass settles, in the rare step where some value is inside its band.
+                let mut any = false;
+                for (x, u) in offsets.iter_mut().zip(velocities.iter_mut()) {
+                    let mut inside = true;
+                    for k in 0..D {
+                        S::advance(&gains, &mut x[k], &mut u[k]);
+                        inside &= band.contains_all(x[k], u[k]);
+                    }
+                    any |= inside;
+                }
+                if any {
+                    core::hint::cold_path();
+                    for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate()
+                    {
+                        if (0..D).all(|k| band.contains(x[k], u[k])) {
+                            settle(slot, x, u);
+                        }
+                    }
+                }
+            } else {
+                // A microcontroller steps one value at a time: a branch on the first
+                // test that fails is the cheapest test.
+                for (slot, (x, u)) in offsets.iter_mut().zip(velocities.iter_mut()).enumerate() {
+                    for k in 0..D {
+                        S::advance(&gains, &mut x[k], &mut u[k]);
+                    }
+                    if (0..D).all(|k| band.contains(x[k], u[k])) {
+                        core::hint::cold_path();
+                        settle(slot, x, u);
+                    }
                 }
             }
         } else {
             for &slot in self.awake.iter() {
                 let slot = slot as usize;
                 let (x, u) = (&mut self.offset[slot], &mut self.step_velocity[slot]);
-                let mut inside = true;
                 for k in 0..D {
                     S::advance(&gains, &mut x[k], &mut u[k]);
-                    inside &= band.contains(x[k], u[k]);
                 }
-                if inside {
+                if (0..D).all(|k| band.contains(x[k], u[k])) {
                     *x = [S::STATE_ZERO; D];
                     *u = [S::STATE_ZERO; D];
                     let _ = self.settled.push(slot as u16);
                 }
             }
         }
-        for &slot in self.settled.iter() {
-            self.is_awake[slot as usize] = false;
+        // The awake list changes only when something settled: a step in which nothing
+        // did pays nothing for the bookkeeping.
+        if !self.settled.is_empty() {
+            for &slot in self.settled.iter() {
+                self.is_awake[slot as usize] = false;
+            }
+            let is_awake = &self.is_awake;
+            self.awake.retain(|&s| is_awake[s as usize]);
         }
-        let is_awake = &self.is_awake;
-        self.awake.retain(|&s| is_awake[s as usize]);
         BatchMotion {
             moving: self.awake.len(),
             settled: self.settled.len(),

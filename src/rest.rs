@@ -130,12 +130,13 @@ impl Default for RestThreshold {
 }
 
 /// A [`RestThreshold`] converted for one tuning and one backend at set-up: the offset
-/// band and the step-velocity band, in the state format.
+/// band and the step-velocity band, in the state format, prepared for one integer
+/// comparison each ([`Scalar::in_band`]).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct RestBand<S: Scalar> {
-    pub(crate) offset: S::State,
-    pub(crate) step_velocity: S::State,
+    pub(crate) offset: S::Band,
+    pub(crate) step_velocity: S::Band,
 }
 
 impl<S: Scalar> RestBand<S> {
@@ -143,7 +144,7 @@ impl<S: Scalar> RestBand<S> {
         // Box |x| ≤ p/√2, |u| ≤ p·√C_k/√2: an undamped spring inside it has an amplitude
         // below p·(1 + θ/4) (see `RestThreshold`).
         let p = threshold.position * core::f64::consts::FRAC_1_SQRT_2;
-        let by_amplitude = p * crate::math::sqrt(tuning.stiffness());
+        let by_amplitude = p * tuning.root_stiffness();
         let by_speed = threshold.velocity * tuning.dt();
         let u = if by_amplitude < by_speed {
             by_amplitude
@@ -158,7 +159,7 @@ impl<S: Scalar> RestBand<S> {
             let v = if v < lsb { lsb } else { v };
             // At most half the state's range, so that `Scalar::within` cannot overflow.
             let half = 0.5 * S::STATE_MAX;
-            S::state_from_f64(if v > half { half } else { v })
+            S::band(S::state_from_f64(if v > half { half } else { v }))
         };
         RestBand {
             offset: clamp(p),
@@ -166,9 +167,17 @@ impl<S: Scalar> RestBand<S> {
         }
     }
 
-    /// True when both the offset and the step velocity are inside the band.
+    /// True when both the offset and the step velocity are inside the band. The step
+    /// velocity is tested first: a moving spring is outside its band most of the time,
+    /// and the test stops at the first comparison.
     #[inline(always)]
     pub(crate) fn contains(&self, offset: S::State, step_velocity: S::State) -> bool {
-        S::within(offset, self.offset) & S::within(step_velocity, self.step_velocity)
+        S::in_band(step_velocity, self.step_velocity) && S::in_band(offset, self.offset)
+    }
+
+    /// [`RestBand::contains`] without a branch, for loops that a compiler vectorises.
+    #[inline(always)]
+    pub(crate) fn contains_all(&self, offset: S::State, step_velocity: S::State) -> bool {
+        S::in_band(step_velocity, self.step_velocity) & S::in_band(offset, self.offset)
     }
 }

@@ -74,32 +74,46 @@ pub(crate) fn gains_of<S: Scalar>(tuning: &Tuning) -> Result<S::Gains, Error> {
     })
 }
 
+/// [`Scalar::MAX`] in the backend's type (a constant: the conversion folds).
+#[inline(always)]
+fn max_position<S: Scalar>() -> S {
+    S::from_f64(S::MAX)
+}
+
 /// `value` as a position, or why not: not finite, or beyond [`Scalar::MAX`].
+///
+/// The test runs in the backend's own arithmetic (an `f32` firmware links no `f64`
+/// comparison for it); only the error is built in `f64`.
 pub(crate) fn check_position<S: Scalar>(value: S, parameter: Parameter) -> Result<S, Error> {
+    // NaN compares false, ±∞ is above the bound; fixed point always passes (its range
+    // is the bound).
+    if value.abs() <= max_position::<S>() {
+        return Ok(value);
+    }
     let v = value.to_f64();
-    if !v.is_finite() {
-        Err(Error::NotFinite { parameter })
-    } else if v.abs() > S::MAX {
-        Err(Error::OutOfRange {
+    Err(if !v.is_finite() {
+        Error::NotFinite { parameter }
+    } else {
+        Error::OutOfRange {
             parameter,
             value: v,
             bound: Bound::MagnitudeAtMost { max: S::MAX },
-        })
-    } else {
-        Ok(value)
-    }
+        }
+    })
 }
 
 /// `value` made usable by an infallible setter: `None` for NaN, else saturated to
-/// [`Scalar::MAX`].
+/// [`Scalar::MAX`]. In the backend's arithmetic, as [`check_position`].
 pub(crate) fn saturate<S: Scalar>(value: S) -> Option<S> {
-    let v = value.to_f64();
-    if v.is_nan() {
-        None
-    } else if v.abs() > S::MAX {
-        Some(S::from_f64(if v > 0.0 { S::MAX } else { -S::MAX }))
-    } else {
+    let max = max_position::<S>();
+    if value.abs() <= max {
         Some(value)
+    } else if value > S::ZERO {
+        Some(max)
+    } else if value < S::ZERO {
+        Some(max.neg())
+    } else {
+        None // NaN
     }
 }
 
@@ -440,12 +454,12 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         if self.at_rest {
             return Motion::Resting;
         }
-        let mut inside = true;
         for i in 0..D {
             S::advance(&self.gains, &mut self.offset[i], &mut self.step_velocity[i]);
-            inside &= self.band.contains(self.offset[i], self.step_velocity[i]);
         }
-        if inside {
+        // Every component inside its band; the first one outside ends the test.
+        let band = &self.band;
+        if (0..D).all(|i| band.contains(self.offset[i], self.step_velocity[i])) {
             self.settle();
             Motion::Settled
         } else {
@@ -456,7 +470,9 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// Advances the value by one time step and nothing else: no rest test, no flag. The
     /// cheapest step, for a loop that runs the spring continuously (a haptic output) or
     /// tests rest itself. A value advanced this way never settles; [`SpringValue::step`]
-    /// afterwards picks up where it is.
+    /// afterwards picks up where it is. A value at rest sits on its target with no
+    /// velocity, which a step leaves unchanged, so it stays at rest (and `advance`
+    /// touches no flag: its cost is the spring's and nothing else).
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
@@ -472,7 +488,12 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         for i in 0..D {
             S::advance(&self.gains, &mut self.offset[i], &mut self.step_velocity[i]);
         }
-        self.at_rest = false;
+        // No `at_rest = false`: at rest the state is zero (see `settle` and `wake_if`),
+        // and zero is a fixed point of every backend's step.
+        debug_assert!(
+            !self.at_rest
+                || (self.offset == [S::STATE_ZERO; D] && self.step_velocity == [S::STATE_ZERO; D])
+        );
     }
 
     /// The current position.

@@ -13,7 +13,7 @@
 //! The `fixed` crate provides the types, the conversions and the saturating add; the
 //! products are taken on the raw bits, with the rounding chosen in the parent module.
 
-use super::wide::{broad, narrow};
+use super::wide::{FastGains, broad, broad_step, narrow, narrow_step};
 use super::{Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
@@ -31,6 +31,8 @@ use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 pub struct FixedGains<M> {
     pub(crate) stiffness: FixedFactor<M>,
     pub(crate) damping: FixedFactor<M>,
+    /// The same gains prepared for the step's fast path (see `wide::FastGains`).
+    pub(crate) fast: FastGains<M>,
 }
 
 /// A factor of any magnitude in a fixed-point backend: `mantissa / 2^shift`.
@@ -77,7 +79,8 @@ narrow_fn!(narrow_q32, i128, u128, i64, 32);
 macro_rules! fixed_backend {
     (
         $S:ty, $Bits:ty, $State:ty, $StateU:ty, $Half:ty, $Coef:ty, $Wide:ty,
-        $arith:ident, $narrow:ident, $narrow_self:ident, $guard:expr, $name:literal
+        $arith:ident, $narrow:ident, $narrow_self:ident, $guard:expr, $name:literal,
+        $fast:expr, $fast_step:expr
     ) => {
         impl Sealed for $S {}
 
@@ -87,6 +90,7 @@ macro_rules! fixed_backend {
             type Factor = FixedFactor<$Half>;
             type Coef = $Coef;
             type Remainder = ();
+            type Band = ($State, $StateU);
 
             const ZERO: Self = <$S>::ZERO;
             const ONE: Self = <$S>::ONE;
@@ -130,6 +134,7 @@ macro_rules! fixed_backend {
                 Some(FixedGains {
                     stiffness: k,
                     damping: d,
+                    fast: $fast(k, d),
                 })
             }
             fn gains_to_f64(gains: &Self::Gains) -> (f64, f64) {
@@ -180,6 +185,22 @@ macro_rules! fixed_backend {
                 $arith::mul_shift::<true>(u, d.mantissa, d.shift)
             }
             #[inline(always)]
+            fn advance(gains: &Self::Gains, x: &mut $State, v: &mut $State) {
+                if !$fast_step(&gains.fast, x, v) {
+                    general_step(gains, x, v);
+                }
+                /// Any gains, any state: the wide products and saturating sums.
+                #[cold]
+                #[inline(never)]
+                fn general_step(gains: &FixedGains<$Half>, x: &mut $State, v: &mut $State) {
+                    let k = gains.stiffness;
+                    let d = gains.damping;
+                    let u = v.saturating_sub($arith::mul_shift::<false>(*x, k.mantissa, k.shift));
+                    *x = x.saturating_add(u);
+                    *v = u.saturating_sub($arith::mul_shift::<true>(u, d.mantissa, d.shift));
+                }
+            }
+            #[inline(always)]
             fn state_add(a: $State, b: $State) -> $State {
                 a.saturating_add(b)
             }
@@ -212,6 +233,15 @@ macro_rules! fixed_backend {
             #[inline(always)]
             fn state_clamp(state: $State, _bound: $State) -> $State {
                 state
+            }
+            #[inline]
+            fn band(bound: $State) -> ($State, $StateU) {
+                (bound, (bound as $StateU).wrapping_mul(2))
+            }
+            #[inline(always)]
+            fn in_band(state: $State, band: ($State, $StateU)) -> bool {
+                // As `within`, with `2b` computed at set-up.
+                (state.wrapping_add(band.0) as $StateU) <= band.1
             }
             #[inline]
             fn coef(value: f64) -> Self::Coef {
@@ -390,10 +420,40 @@ impl WideGeometry for i128 {
 }
 
 fixed_backend!(
-    I16F16, i32, i64, u64, i32, I3F29, i64, narrow, narrow_q29, narrow_q16, 24, "I16F16"
+    I16F16,
+    i32,
+    i64,
+    u64,
+    i32,
+    I3F29,
+    i64,
+    narrow,
+    narrow_q29,
+    narrow_q16,
+    24,
+    "I16F16",
+    |k: FixedFactor<i32>, d: FixedFactor<i32>| {
+        FastGains::narrow((k.mantissa, k.shift), (d.mantissa, d.shift))
+    },
+    narrow_step::advance
 );
 fixed_backend!(
-    I32F32, i64, i128, u128, i64, I3F61, i128, broad, narrow_q61, narrow_q32, 32, "I32F32"
+    I32F32,
+    i64,
+    i128,
+    u128,
+    i64,
+    I3F61,
+    i128,
+    broad,
+    narrow_q61,
+    narrow_q32,
+    32,
+    "I32F32",
+    |k: FixedFactor<i64>, d: FixedFactor<i64>| {
+        FastGains::broad((k.mantissa, k.shift), (d.mantissa, d.shift))
+    },
+    broad_step::advance
 );
 
 #[cfg(test)]

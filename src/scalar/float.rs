@@ -18,7 +18,7 @@ pub struct FloatGains<F> {
 
 macro_rules! float_backend {
     (
-        $F:ty, $name:literal, $max_exponent:literal, $state_exponent:literal,
+        $F:ty, $Bits:ty, $name:literal, $max_exponent:literal, $state_exponent:literal,
         $network_exponent:literal, $min_gain:expr, $sqrt:path, $Remainder:ty,
         $carrying:ident
     ) => {
@@ -30,6 +30,7 @@ macro_rules! float_backend {
             type Factor = $F;
             type Coef = $F;
             type Remainder = $Remainder;
+            type Band = $Bits;
 
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -143,6 +144,16 @@ macro_rules! float_backend {
                 } else {
                     0.0
                 }
+            }
+            #[inline]
+            fn band(bound: Self) -> $Bits {
+                bound.to_bits() << 1
+            }
+            #[inline(always)]
+            fn in_band(state: Self, band: $Bits) -> bool {
+                // The sign shifted out, the bits of a magnitude order as the magnitude
+                // (±0 is 0; NaN is above +∞, so never inside a finite or infinite band).
+                (state.to_bits() << 1) <= band
             }
             #[inline]
             fn coef(value: f64) -> Self::Coef {
@@ -259,6 +270,7 @@ mod plain {
 
 float_backend!(
     f32,
+    u32,
     "f32",
     64,
     120,
@@ -270,6 +282,7 @@ float_backend!(
 );
 float_backend!(
     f64,
+    u64,
     "f64",
     500,
     1000,

@@ -209,6 +209,19 @@ pub trait Scalar:
     /// never vanishes while `u ≠ 0`, so a damped spring always comes to rest).
     fn damping_term(gains: &Self::Gains, u: Self::State) -> Self::State;
 
+    /// A rest bound `b ≥ 0` prepared for [`Scalar::in_band`] (set-up only): for floats
+    /// the bits of `b` shifted left by one, for fixed point `b` and `2b`.
+    #[doc(hidden)]
+    type Band: MaybeFormat + Copy + PartialEq + Debug + Default + Send + Sync + 'static;
+    /// `bound` (`0 ≤ bound ≤ STATE_MAX/2`, not NaN) prepared for [`Scalar::in_band`].
+    #[doc(hidden)]
+    fn band(bound: Self::State) -> Self::Band;
+    /// `|state| ≤ bound` for a band from [`Scalar::band`], exactly as
+    /// [`Scalar::within`]: one integer comparison (floats compare the magnitudes' bits,
+    /// which order like the magnitudes; NaN is never inside).
+    #[doc(hidden)]
+    fn in_band(state: Self::State, band: Self::Band) -> bool;
+
     /// One step of a spring toward zero, from offset `x` and kept step velocity
     /// `v = ũ`: `u = ũ − C_k·x; x += u; ũ = u − C_d·u`.
     #[inline(always)]

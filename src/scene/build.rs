@@ -354,8 +354,15 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         tuning: &Tuning,
     ) -> Result<Added, Error> {
         let (sa, sb) = (self.slot(a)?, self.slot(b)?);
-        let (x, _) = L::measure(&self.separation(sa, sb), &L::rest(S::ZERO));
-        self.add_spring(a, b, S::narrow(x), tuning)
+        let d = self.separation(sa, sb);
+        // An angle kernel's rest value is the signed difference it measures from a zero
+        // rest; a distance kernel's the exact distance, whatever kernel measures it.
+        let rest = if L::SIGNED_REST {
+            L::measure(&d, &L::rest(S::ZERO)).0
+        } else {
+            S::norm(&d)
+        };
+        self.add_spring(a, b, S::narrow(rest), tuning)
     }
 
     /// Adds a pinned particle at `point` and a spring from it to `particle`: an anchor,

@@ -222,7 +222,10 @@ impl Oscillator {
             dt,
             start: self.kept_start_weights(dt),
             oscillator: Some(*self),
-        })
+            root_stiffness: 0.0,
+            growth: 0.0,
+        }
+        .derived())
     }
 
     /// `(P̃, Q̃) = (1 − C_d)·(P, Q)` of [`Oscillator::start_weights`], formed so that they

@@ -75,6 +75,11 @@ pub struct Tuning {
     /// `P̃` and `Q̃` of the kept step velocity `ũ = (1 − C_d)·u = P̃·x + Q̃·v`.
     start: (f64, f64),
     oscillator: Option<Oscillator>,
+    /// `√C_k` and [`Tuning::growth`], derived once when the tuning is made (see
+    /// [`Tuning::derived`]): a tuning computed at compile time carries them, and a
+    /// firmware that sets a value up from it runs no square root nor division in `f64`.
+    root_stiffness: f64,
+    growth: f64,
 }
 
 /// Computes a [`Tuning`] at compile time; an invalid one is a compile error.
@@ -245,7 +250,10 @@ impl Tuning {
             dt,
             start: (0.0, retention * dt),
             oscillator: None,
-        })
+            root_stiffness: 0.0,
+            growth: 0.0,
+        }
+        .derived())
     }
 
     /// The stiffness coefficient `C_k`, a fraction of `k_max = m/dt²`.
@@ -375,6 +383,25 @@ impl Tuning {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub const fn growth(&self) -> f64 {
+        self.growth
+    }
+
+    /// `√C_k`, for the rest band (see [`RestThreshold`](crate::RestThreshold)).
+    pub(crate) const fn root_stiffness(&self) -> f64 {
+        self.root_stiffness
+    }
+
+    /// The tuning with the quantities set-up derives from its coefficients filled in.
+    /// Every constructor ends here, so that they are computed in the constructor's
+    /// `const` context: `SpringValue::new` on a `const` tuning then folds to constants.
+    pub(crate) const fn derived(mut self) -> Self {
+        self.root_stiffness = math::sqrt(self.stiffness);
+        self.growth = self.bound_growth();
+        self
+    }
+
+    /// The bound [`Tuning::growth`] returns.
+    const fn bound_growth(&self) -> f64 {
         let (trace, det) = self.trace_det();
         // ‖M‖∞ for M = [[1 − C_k, 1], [−det·C_k, det]] on (x, ũ), the state the values
         // keep (see `Scalar`); its trace and determinant are those of the map on (x, u).
