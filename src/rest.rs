@@ -141,11 +141,16 @@ pub(crate) struct RestBand<S: Scalar> {
 
 impl<S: Scalar> RestBand<S> {
     pub(crate) fn new(threshold: &RestThreshold, tuning: &Tuning) -> Self {
+        Self::scaled(threshold, tuning.root_stiffness(), tuning.dt())
+    }
+
+    /// The band for a spring with `√C_k = root_stiffness` stepped every `dt`.
+    pub(crate) fn scaled(threshold: &RestThreshold, root_stiffness: f64, dt: f64) -> Self {
         // Box |x| ≤ p/√2, |u| ≤ p·√C_k/√2: an undamped spring inside it has an amplitude
         // below p·(1 + θ/4) (see `RestThreshold`).
         let p = threshold.position * core::f64::consts::FRAC_1_SQRT_2;
-        let by_amplitude = p * tuning.root_stiffness();
-        let by_speed = threshold.velocity * tuning.dt();
+        let by_amplitude = p * root_stiffness;
+        let by_speed = threshold.velocity * dt;
         let u = if by_amplitude < by_speed {
             by_amplitude
         } else {

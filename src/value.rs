@@ -56,7 +56,8 @@ pub struct SpringValue<S: Scalar, const D: usize = 1> {
     at_rest: bool,
     start: Start<S>,
     threshold: RestThreshold,
-    tuning: Tuning,
+    /// `√C_k` and `dt`, to rebuild the rest band for another threshold.
+    rest_scales: (f64, f64),
 }
 
 /// The gains of `tuning` in backend `S`, or the error that says why they do not exist.
@@ -154,7 +155,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
             at_rest: true,
             start: Start::new(tuning)?,
             threshold,
-            tuning: *tuning,
+            rest_scales: (tuning.root_stiffness(), tuning.dt()),
         })
     }
 
@@ -170,7 +171,8 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// ```
     pub fn with_rest_threshold(mut self, threshold: RestThreshold) -> Self {
         self.threshold = threshold;
-        self.band = RestBand::new(&threshold, &self.tuning);
+        let (root, dt) = self.rest_scales;
+        self.band = RestBand::scaled(&threshold, root, dt);
         self
     }
 
@@ -431,7 +433,7 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         self.gains = gains;
         self.start = start;
         self.step_velocity = u;
-        self.tuning = *tuning;
+        self.rest_scales = (tuning.root_stiffness(), tuning.dt());
         self.band = RestBand::new(&self.threshold, tuning);
         Ok(())
     }
@@ -581,19 +583,6 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
             *v = self.start.velocity(*x, *u);
         }
         v
-    }
-
-    /// The tuning in effect, as given (its `dt` is the value's time step).
-    ///
-    /// ```
-    /// use stiffspring::{SpringValue, Tuning};
-    /// let t = Tuning::rigid(0.01)?;
-    /// let v = SpringValue::<f64>::new([0.0], &t)?;
-    /// assert_eq!(v.tuning(), t);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn tuning(&self) -> Tuning {
-        self.tuning
     }
 
     /// The rest threshold.
