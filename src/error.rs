@@ -121,6 +121,11 @@ pub enum Bound {
         /// The smallest value accepted.
         min: f64,
     },
+    /// At most `max`.
+    AtMost {
+        /// The largest value accepted.
+        max: f64,
+    },
 }
 
 impl Bound {
@@ -137,6 +142,7 @@ impl Bound {
             Bound::Below { max } => value < max,
             Bound::MagnitudeAtMost { max } => value >= -max && value <= max,
             Bound::AtLeast { min } => value >= min,
+            Bound::AtMost { max } => value <= max,
         }
     }
 }
@@ -306,6 +312,7 @@ impl fmt::Display for Bound {
             Bound::Below { max } => write!(f, "(−∞, {max})"),
             Bound::MagnitudeAtMost { max } => write!(f, "[−{max}, {max}]"),
             Bound::AtLeast { min } => write!(f, "[{min}, ∞)"),
+            Bound::AtMost { max } => write!(f, "(−∞, {max}]"),
         }
     }
 }

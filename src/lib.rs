@@ -65,6 +65,7 @@
 mod batch;
 mod error;
 pub mod kernel;
+pub mod knob;
 pub mod length;
 mod math;
 mod motion;
@@ -77,6 +78,7 @@ mod value;
 
 pub use batch::{BatchIndex, BatchMotion, SpringBatch};
 pub use error::{Bound, Error, Parameter, Remedy};
+pub use knob::{Knob, KnobConfig, KnobOutput};
 pub use motion::Motion;
 pub use rest::RestThreshold;
 pub use scalar::Scalar;

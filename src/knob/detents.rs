@@ -10,6 +10,7 @@
 //! band in which a toggling count could switch back and forth is never crossed by one
 //! count (`tests/knob_hysteresis.rs`).
 
+use super::config::floor;
 use crate::scalar::Scalar;
 
 /// How many detents the index may move in one period. At 1 kHz that is 4 000 detents per
@@ -18,6 +19,16 @@ use crate::scalar::Scalar;
 pub(crate) const MAX_WALK: usize = 4;
 
 /// The detent grid: the current index and centre, and the switching threshold.
+///
+/// # Centres far from the origin
+///
+/// A float backend computes the centre as `origin + index·width`, rounded once. A fixed
+/// backend cannot: the index of an endless knob outgrows its range (`I16F16` holds
+/// ±32,767, a 100-detent knob at 1000 rad is at detent 15,915; at 32,000 rad, 509,000), and a width rounded to
+/// the LSB puts detent `i` `i·½` LSB off. So in fixed point the centre is carried from
+/// detent to detent, exactly: the width is a whole number of LSB plus a remainder kept to
+/// 2⁻³² LSB over two fractional accumulators, so that the centre stays the nearest LSB to
+/// `origin + i·width` anywhere in the backend's range (`tests/knob_fixed.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Ladder<S: Scalar> {
@@ -28,8 +39,28 @@ pub(crate) struct Ladder<S: Scalar> {
     min_index: i32,
     max_index: i32,
     index: i32,
+    /// Floats: the index as a number (exact below 2²⁴ in `f32`).
     index_value: S,
     centre: S,
+    /// Fixed point: `origin + index·width + LSB/2 = centre + (frac1 + frac2·LSB)·LSB`.
+    frac1: S,
+    frac2: S,
+    /// The width's remainder below one LSB: `step1 + step2·LSB` (in LSB).
+    step1: S,
+    step2: S,
+    /// One LSB (fixed point), zero for floats.
+    lsb: S,
+    /// The exact grid, for resets.
+    exact_origin: f64,
+    exact_width: f64,
+}
+
+/// `x − floor(x)` split into a value on the backend's grid and the rest, scaled up:
+/// `(floor(x·2^F)/2^F, frac(x·2^F))` with `2^F = 1/LSB`.
+fn split<S: Scalar>(x: f64) -> (S, S) {
+    let scale = 1.0 / S::RESOLUTION;
+    let high = floor(x * scale);
+    (S::from_f64(high / scale), S::from_f64(x * scale - high))
 }
 
 impl<S: Scalar> Ladder<S> {
@@ -42,24 +73,41 @@ impl<S: Scalar> Ladder<S> {
         (min_index, max_index): (i32, i32),
         index: i32,
     ) -> Self {
+        let fixed = S::RESOLUTION > 0.0;
+        let (width_s, step1, step2, lsb) = if fixed {
+            let lsb = S::RESOLUTION;
+            let units = width / lsb;
+            let whole = floor(units);
+            let (s1, s2) = split::<S>(units - whole);
+            (S::from_f64(whole * lsb), s1, s2, S::from_f64(lsb))
+        } else {
+            (S::from_f64(width), S::ZERO, S::ZERO, S::ZERO)
+        };
         let mut ladder = Ladder {
             origin: S::from_f64(origin),
-            width: S::from_f64(width),
+            width: width_s,
             threshold: S::from_f64(threshold),
             neg_threshold: S::from_f64(-threshold),
             min_index,
             max_index,
             index,
-            index_value: S::from_f64(index as f64),
+            index_value: S::ZERO,
             centre: S::ZERO,
+            frac1: S::ZERO,
+            frac2: S::ZERO,
+            step1,
+            step2,
+            lsb,
+            exact_origin: origin,
+            exact_width: width,
         };
-        ladder.centre = ladder.centre_of_index();
+        ladder.set_index(index);
         ladder
     }
 
     /// A grid that never switches: index 0 at `origin` (a knob without detents).
     pub(crate) fn fixed(origin: f64) -> Self {
-        let never = S::from_f64(S::SAFE_MAGNITUDE);
+        let never = S::from_f64(S::MAX);
         Ladder {
             origin: S::from_f64(origin),
             width: S::ZERO,
@@ -70,14 +118,58 @@ impl<S: Scalar> Ladder<S> {
             index: 0,
             index_value: S::ZERO,
             centre: S::from_f64(origin),
+            frac1: S::ZERO,
+            frac2: S::ZERO,
+            step1: S::ZERO,
+            step2: S::ZERO,
+            lsb: S::ZERO,
+            exact_origin: origin,
+            exact_width: 0.0,
         }
     }
 
-    /// `origin + i·width`, rounded once: computed from the index rather than accumulated,
-    /// so that a float backend's centres do not drift over many turns.
+    /// One detent up.
     #[inline(always)]
-    fn centre_of_index(&self) -> S {
-        self.origin.add(self.index_value.mul(self.width))
+    fn up(&mut self) {
+        self.index += 1;
+        if S::RESOLUTION > 0.0 {
+            self.centre = self.centre.add(self.width);
+            self.frac2 = self.frac2.add(self.step2);
+            if self.frac2 >= S::ONE {
+                self.frac2 = self.frac2.sub(S::ONE);
+                self.frac1 = self.frac1.add(self.lsb);
+            }
+            self.frac1 = self.frac1.add(self.step1);
+            if self.frac1 >= S::ONE {
+                self.frac1 = self.frac1.sub(S::ONE);
+                self.centre = self.centre.add(self.lsb);
+            }
+        } else {
+            self.index_value = self.index_value.add(S::ONE);
+            self.centre = self.origin.add(self.index_value.mul(self.width));
+        }
+    }
+
+    /// One detent down: exactly the inverse of [`Self::up`].
+    #[inline(always)]
+    fn down(&mut self) {
+        self.index -= 1;
+        if S::RESOLUTION > 0.0 {
+            self.centre = self.centre.sub(self.width);
+            self.frac2 = self.frac2.sub(self.step2);
+            if self.frac2 < S::ZERO {
+                self.frac2 = self.frac2.add(S::ONE);
+                self.frac1 = self.frac1.sub(self.lsb);
+            }
+            self.frac1 = self.frac1.sub(self.step1);
+            if self.frac1 < S::ZERO {
+                self.frac1 = self.frac1.add(S::ONE);
+                self.centre = self.centre.sub(self.lsb);
+            }
+        } else {
+            self.index_value = self.index_value.sub(S::ONE);
+            self.centre = self.origin.add(self.index_value.mul(self.width));
+        }
     }
 
     /// Moves the index toward `angle` (at most [`MAX_WALK`] detents) and returns the
@@ -88,17 +180,14 @@ impl<S: Scalar> Ladder<S> {
         for _ in 0..MAX_WALK {
             let e = angle.sub(self.centre);
             if e > self.threshold && self.index < self.max_index {
-                self.index += 1;
-                self.index_value = self.index_value.add(S::ONE);
+                self.up();
                 moved += 1;
             } else if e < self.neg_threshold && self.index > self.min_index {
-                self.index -= 1;
-                self.index_value = self.index_value.sub(S::ONE);
+                self.down();
                 moved -= 1;
             } else {
                 break;
             }
-            self.centre = self.centre_of_index();
         }
         moved
     }
@@ -115,11 +204,25 @@ impl<S: Scalar> Ladder<S> {
         self.centre
     }
 
-    /// Puts the index back on `index` (set-up and reset only).
+    /// Puts the index on `index` (set-up and reset only), with the centre from the exact
+    /// grid.
     pub(crate) fn set_index(&mut self, index: i32) {
+        if self.exact_width == 0.0 {
+            return;
+        }
         self.index = index.clamp(self.min_index, self.max_index);
-        self.index_value = S::from_f64(self.index as f64);
-        self.centre = self.centre_of_index();
+        let exact = self.exact_origin + f64::from(self.index) * self.exact_width;
+        if S::RESOLUTION > 0.0 {
+            let units = exact / S::RESOLUTION + 0.5;
+            let whole = floor(units);
+            let (f1, f2) = split::<S>(units - whole);
+            self.centre = S::from_f64(whole * S::RESOLUTION);
+            self.frac1 = f1;
+            self.frac2 = f2;
+        } else {
+            self.index_value = S::from_f64(f64::from(self.index));
+            self.centre = self.origin.add(self.index_value.mul(self.width));
+        }
     }
 }
 

@@ -1,128 +1,86 @@
-//! The closed-loop stability region of the knob, and the map from a strength in `[0, 1]`
-//! into it.
+//! What the knob guarantees, and the analysis behind it.
 //!
-//! # The loop is not the article's particle
+//! # The loop
 //!
-//! The article's spring moves a simulated particle: the spring's impulse and the particle's
-//! position update are one symplectic step. A haptic knob instead drives a real rotor of
-//! inertia `I`. Each control period `dt` the firmware reads the encoder angle `θ_n`, forms
-//! the step velocity as a backward difference `u_n = θ_n − θ_{n−1}`, and commands the
-//! torque
+//! Each control period `dt` the firmware reads the encoder angle `θ_n` (quantised to one
+//! count), and the knob commands a torque that the motor holds over a period (a zero-order
+//! hold), one period later with [`Latency::OneStep`]. The rotor integrates it exactly:
+//! `J·dω/dt = τ`. The torque law is a spring and a damper,
 //!
 //! ```text
-//! τ_n = (I/dt²)·Δu_n,        Δu_n = respond(e_n, u_n) − u_n = −(C_k·e_n + C_d·u_n)
+//! τ_n = −K·dz(e_n) − B·v_n          v_n = v_{n−1} + α·((θ_n − θ_{n−1})/dt − v_{n−1})
 //! ```
 //!
-//! (`e_n = θ_n − target`, [`kernel::Coefficients::respond`]), which the motor holds
-//! constant over the period (a zero-order hold). The rotor integrates it exactly:
-//! with the per-step velocity `w_n = ω_n·dt`,
+//! with `e` the extension (from the detent centre, the endstop, the magnet, the return
+//! centre), `dz` a rest zone of one count (the spring is zero within one count of the rest
+//! point), and `v` the backward difference of the angles through a first-order low-pass
+//! filter of time constant `T_f` (`α = dt/(T_f + dt)`). In dimensionless form, with the
+//! step velocity `u = v·dt`, it is the crate's kernel `Δu = −(C_k·e + C_d·u)` with
+//! `C_k = K·dt²/J` and `C_d = B·dt/J`, on the filtered `u`.
+//!
+//! With `β = 1 − α` and `d` periods of delay, the closed loop of one zone has the
+//! characteristic polynomial ([`characteristic_polynomial`])
 //!
 //! ```text
-//! θ_{n+1} = θ_n + w_n + Δu_n/2        w_{n+1} = w_n + Δu_n
+//! p(z) = 2·(z − 1)²·(z − β)·z^d + (z + 1)·[C_k·(z − β) + C_d·α·(z − 1)]
 //! ```
 //!
-//! The `/2` (a constant torque moves a rotor half as far in one period as the article's
-//! impulse does) and the backward difference (the controller sees the velocity half a
-//! period late) are what make this loop differ from the particle.
+//! (the ZOH rotor is `(z + 1)/(2(z − 1)²)` in step units; the filtered backward difference
+//! is `α·(z − 1)/(z − β)`). Without the filter (`α = 1`) it is the classic sampled
+//! spring-damper, stable for small gains exactly when `C_k < 2·C_d`, i.e. `K·dt/2 < B`:
+//! Colgate and Schenkel's bound for a sampled virtual wall, with the knob's own damping in
+//! the place of the device's physical damping.
 //!
-//! # The characteristic polynomial and Jury's test
+//! # What a linear test leaves out, and how each is covered
 //!
-//! In `z`, the ZOH rotor from `Δu` to `θ` is `P(z) = (z + 1)/(2·(z − 1)²)` and the
-//! controller is `K(z) = C_k + C_d·(1 − z⁻¹)`. With the state `(θ_n, w_n, θ_{n−1})` the
-//! closed loop `1 + P·K = 0` has the third-order characteristic polynomial
-//! ([`Latency::SameStep`])
+//! A linearly stable loop can still limit-cycle: with the previous law (a strength map with
+//! a gain margin of 2, commit `8898beb`), 297 of 21,870 runs of a grid like the sweep of
+//! `tests/knob_sweep.rs` (detents without endstops; 10, 14 and 16 bits) oscillated at rest,
+//! up to 10,223 counts peak to peak (a development harness on the same rotor model, not
+//! kept: the old API is gone). Each effect, and what the knob does about it:
 //!
-//! ```text
-//! p(z) = 2z³ + (C_k + C_d − 4)·z² + (2 + C_k)·z − C_d
-//! ```
-//!
-//! Jury's conditions for `p(z)/2 = z³ + a₂z² + a₁z + a₀` are
-//!
-//! | condition | here | gives |
+//! | effect | mechanism | cover |
 //! |---|---|---|
-//! | `p(1) > 0` | `2·C_k > 0` | `C_k > 0` |
-//! | `−p(−1) > 0` | `8 > 0` | always (the ZOH zero at `z = −1` cancels the gains) |
-//! | `\|a₀\| < 1` | `C_d/2 < 1` | `C_d < 2` |
-//! | `1 − a₀² > \|a₀a₂ − a₁\|` | `4 − C_d² > C_k·(2 + C_d) + (2 − C_d)²` | `C_k < 2·C_d·(2 − C_d)/(2 + C_d)` |
+//! | inertia off by ×½…×2 | the loop gain is `1/J` | every check below holds for the gains `g ∈ [½, 2]` ([`INERTIA_UNCERTAINTY`]) |
+//! | a loop that is stable but rings | a pole near the unit circle at `g = 2` rings for seconds | every pole at every `g` has a damping ratio ≥ [`MIN_DAMPING_RATIO`] (Tustin) and decays at least [`DECAY_FRACTION`] as fast as the designed spring |
+//! | torque saturation | the clamp multiplies the loop gain by a factor in `(0, 1]` | the loop is also stable at gains `1/64…½`; a detent or magnet whose peak torque exceeds the limit (a relay over most of its cell) is refused |
+//! | encoder quantisation, damping | a backward difference of counts is `±1` count for one period: the damping turns it into a kick that can reverse a slow rotor and pump energy | the velocity is low-pass filtered, so that the kick decays while the rotor turns around (the turn-around then loses energy); the same damping `B` in every zone, so that the kicks into and out of a zone cancel |
+//! | encoder quantisation, spring | a centre between two counts makes the spring push back and forth | a rest zone of one count around the rest point |
+//! | detent boundaries | the centre jumps | the switch happens past the snap point (≥ ½ width) and the hysteresis: the potential drops at each switch, so the switching dissipates |
+//! | endstops | a stiffer spring switches in | the endstop adds to the detent field (the force is continuous at the stop), with the same damping; the endstop's stiffness is checked as a zone of its own |
 //!
-//! so the loop is stable exactly in
+//! One more bound covers the torque a single count commands: a reading that toggles
+//! between two counts makes the torque toggle by `(K + B·α/dt)·count`, which must stay
+//! within [`COUNT_TORQUE_FRACTION`] of the limit in every zone (measured without it: a
+//! 10-bit encoder at 1 kHz and the stiffest detent toggled 32 mN·m, 64 % of the limit, on a
+//! one-count limit cycle that the position metric does not see).
 //!
-//! ```text
-//! 0 < C_d < 2,        0 < C_k < 2·C_d·(2 − C_d)/(2 + C_d)        (same-step torque)
-//! ```
+//! The filter's time constant is the longest (the least ripple at rest) that still passes
+//! every check: `T_f = c/ω`, with `c` from `0.25` down to `0` (no filter) in steps of
+//! `2^{-1/4}`, and `ω` the higher of the stiffest zone's natural frequency and `B/J`.
 //!
-//! ([`same_step_stiffness_limit`]). It is much smaller than the particle's
-//! (`C_k + 2·C_d < 4`): the stiffest stable spring is `C_k = 12 − 8√2 ≈ 0.686`, at
-//! `C_d = 2√2 − 2 ≈ 0.828`, and the article's rigid spring `C_k = C_d = 1` is
-//! **unstable** on a real rotor (its limit at `C_d = 1` is `C_k < 2/3`). For small gains
-//! the condition reads `C_k < 2·C_d`, i.e. `k·dt/2 < d`: a sampled spring needs a
-//! damping of at least half its stiffness times the period, the known condition for
-//! sampled haptic walls. Without damping no stiffness is stable.
+//! # The checks
 //!
-//! # A one-sample computational delay
+//! All in `f64` at set-up, without `libm`, by Schur–Cohn (Jury) recursions on transformed
+//! polynomials, so no root is computed:
 //!
-//! Firmware structured like SimpleFOC (and SmartKnob on it) reads the sensor in
-//! `loopFOC()`, computes the torque, and `move()` stores it; the phase voltages are set
-//! from it by the *next* `loopFOC()`. The torque computed from `θ_n` then acts over
-//! `[t_{n+1}, t_{n+2}]`: one period of delay, and the fourth-order polynomial
-//! ([`Latency::OneStep`])
+//! - **decay:** the roots of `p(r·z)` lie inside the unit circle, `r = e^{−σ·dt}`, with
+//!   `σ` [`DECAY_FRACTION`] of the slowest decay rate of the designed continuous spring
+//!   (`J·s² + B·s + K`);
+//! - **damping ratio:** with `w = (z − 1)/(z + 1)` (Tustin), every root has
+//!   `−Re w ≥ ζ_min·|w|`: the polynomial in `w` rotated by `asin ζ_min` and mapped back to
+//!   the disc has its roots inside it (a complex Schur–Cohn test);
+//! - **no slow Nyquist mode:** every root has `|w| < 6` (stays clear of `z = −1`, where the
+//!   Tustin damping ratio says nothing);
+//! - for [`Latency::OneStep`] the checks hold with and without the period of delay.
 //!
-//! ```text
-//! p(z) = 2z⁴ − 4z³ + (2 + C_k + C_d)·z² + C_k·z − C_d
-//! ```
-//!
-//! Its region (Jury's test on a quartic, evaluated numerically by [`is_stable`]) is
-//! about four times smaller: the stiffest stable spring is `C_k ≈ 0.144` at `C_d ≈ 0.42`.
-//! A firmware whose haptic loop sets the reference of a much faster current loop within
-//! the same period has (almost) no delay. The delay is real for the common structure, and
-//! a map designed for it also keeps the gain margin below without the delay (checked at
-//! set-up and in `tests/knob_stability.rs`, also for fractional delays), so
-//! [`Latency::OneStep`] is the default.
-//!
-//! # The margin and the strength map
-//!
-//! A strength `s ∈ [0, 1]` is a fraction of the stiffest spring the map allows, so the
-//! stiffness is linear in `s` (`C_k = s·C_k,top`) and strengths add. The damping is not
-//! chosen per strength by hand: `(C_k, C_d)` are placed so that the dominant closed-loop
-//! pole pair is the bilinear (Tustin) image of a continuous spring with the knob's damping
-//! ratio `ζ` (a closed form in `p(z)`, no `libm`), so every strength settles with the same
-//! damping ratio. The top of the map is the largest such spring that
-//!
-//! - has a **gain margin of 2** ([`GAIN_MARGIN`]): the loop stays stable when both
-//!   coefficients are multiplied by any factor up to 2. The loop gain is `k_t/I` (the
-//!   motor's torque constant over the inertia); a factor of 2 covers an inertia
-//!   overestimated by 2 (a lighter knob cap, a hand that lets go), a torque constant 2
-//!   times higher than assumed, or both by √2. It also bounds the damping of the
-//!   slowest mode away from zero at the top (the radius stays below 0.96 over the accepted
-//!   `ζ`, `tests/knob_stability.rs`);
-//! - is still on the rising part of the placement curve, so that a stronger strength is
-//!   always a stiffer spring.
-//!
-//! For small damping ratios the margin is what stops the map (the loop at strength 1
-//! turns unstable at 2.02 times its gains for `ζ = 0.2`); from `ζ ≈ 0.5` on, the rising
-//! curve stops it first and the margin is larger (3.3 times at `ζ = 0.7`, 5.7 at `ζ = 2`
-//! without delay; 2.8 and 4.6 with one period), measured in `tests/knob_stability.rs`.
-//!
-//! Everything is checked in `f64` at set-up by the exact Schur–Cohn (Jury) recursion, and
-//! exhaustively in the tests over a grid of strengths, damping ratios and latencies, with
-//! eigenvalues computed independently from the rotor's state matrix.
-//!
-//! | `ζ` | `C_k,top` same step | `C_k,top` one step |
-//! |---|---|---|
-//! | 0.3 | 0.29 | 0.064 |
-//! | 0.7 | 0.12 | 0.030 |
-//! | 1.0 | 0.070 | 0.019 |
-//! | 2.0 | 0.021 | 0.0064 |
-//!
-//! For a feel of the numbers: at 1 kHz with one step of delay and `ζ = 0.7`, strength 1
-//! is `k = C_k,top·I/dt² = 0.30 N·m/rad` for a rotor of `1e−5 kg·m²`, with its dominant
-//! poles at 54 Hz; at 10 kHz it is 100 times stiffer. Real detents use a fraction of it,
-//! and the torque limit clips the rest. (At the top, `√C_k` is about half of `ω·dt`: the
-//! gains are large enough that the sampled loop is far from a continuous spring.)
-//!
-//! [`kernel::Coefficients::respond`]: crate::kernel::Coefficients::respond
+//! The tests check the same conditions independently, from the eigenvalues of the rotor's
+//! state matrix, on a denser grid of gains (`tests/knob_stability.rs`).
 
-use crate::error::{Error, Parameter};
+// The tests below are written `!(a < b)` on purpose: a NaN must fail them.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+use super::error::Zone;
 
 /// When the torque computed from an angle reaches the rotor.
 ///
@@ -138,24 +96,39 @@ pub enum Latency {
     SameStep,
     /// The torque computed from `θ_n` acts over `[t_{n+1}, t_{n+2}]`: the structure of
     /// SimpleFOC-style firmware (`loopFOC()` applies what the previous `move()` stored).
-    /// Maps designed for it also keep their margin without the delay.
+    /// Configurations for it are also checked without the delay.
     #[default]
     OneStep,
 }
 
-/// The gain margin every accepted configuration keeps: the loop stays stable with both
-/// coefficients multiplied by any factor up to this.
+/// The factor by which the real rotor inertia may differ from the configured one, either
+/// way: every check holds for inertias from `J/2` to `2·J` (loop gains `½…2`).
 ///
 /// ```
-/// assert_eq!(stiffspring::knob::GAIN_MARGIN, 2.0);
+/// assert_eq!(stiffspring::knob::INERTIA_UNCERTAINTY, 2.0);
 /// ```
-pub const GAIN_MARGIN: f64 = 2.0;
+pub const INERTIA_UNCERTAINTY: f64 = 2.0;
 
-/// The accepted damping ratios `ζ` of the strength map, inclusive.
+/// The least damping ratio of any closed-loop pole, at any inertia in the uncertainty
+/// range (the Tustin-equivalent damping ratio `−Re w/|w|`, `w = (z − 1)/(z + 1)`).
 ///
-/// Below 0.2 a detent rings for many periods after a flick; above 2 the top stiffness
-/// falls below a hundredth of a step's (`C_k,top ≈ 0.006` with one step of delay) and the
-/// knob mostly feels viscous.
+/// ```
+/// assert_eq!(stiffspring::knob::MIN_DAMPING_RATIO, 0.1);
+/// ```
+pub const MIN_DAMPING_RATIO: f64 = 0.1;
+
+/// Every pole decays at least this fraction as fast as the designed continuous spring
+/// (`J·s² + B·s + K`), at any inertia in the uncertainty range. A rotor twice as heavy as
+/// configured decays half as fast in continuous time; a third leaves room for the sampling.
+///
+/// ```
+/// assert!((stiffspring::knob::DECAY_FRACTION - 1.0 / 3.0).abs() < 1e-15);
+/// ```
+pub const DECAY_FRACTION: f64 = 1.0 / 3.0;
+
+/// The accepted damping ratios `ζ` of [`KnobConfig::damping_ratio`], inclusive.
+///
+/// [`KnobConfig::damping_ratio`]: crate::KnobConfig::damping_ratio
 ///
 /// ```
 /// let (lo, hi) = stiffspring::knob::DAMPING_RATIO_RANGE;
@@ -163,51 +136,169 @@ pub const GAIN_MARGIN: f64 = 2.0;
 /// ```
 pub const DAMPING_RATIO_RANGE: (f64, f64) = (0.2, 2.0);
 
-/// The gains checked at set-up: the margin, plus 1% so that rounding in a later
-/// evaluation cannot put the margin point on the boundary, and fractions of it. The
-/// tests check a dense grid of factors.
-const CHECKED_GAINS: [f64; 4] = [0.5, 1.0, 1.5, GAIN_MARGIN * 1.01];
+/// The gains of the robust checks: `½·2^{k/4}`, `k = 0..=8`, from `½` to `2`.
+const ROBUST_GAINS: [f64; 9] = [
+    0.5,
+    0.594_603_557_501_360_5,
+    core::f64::consts::FRAC_1_SQRT_2,
+    0.840_896_415_253_714_5,
+    1.0,
+    1.189_207_115_002_721,
+    core::f64::consts::SQRT_2,
+    1.681_792_830_507_429,
+    2.0,
+];
 
-/// The characteristic polynomial of the closed loop, coefficients from `z⁰` up, and its
-/// degree (3 for [`Latency::SameStep`], 4 for [`Latency::OneStep`]).
+/// The gains a saturating torque adds below the robust range: checked for stability.
+const SMALL_GAINS: [f64; 3] = [1.0 / 64.0, 1.0 / 16.0, 0.25];
+
+/// Roots must stay inside `|w| < NYQUIST_GUARD` (clear of `z = −1`): on the negative real
+/// axis, `z > −5/7`.
+const NYQUIST_GUARD: f64 = 6.0;
+
+/// `cos ψ` of the rotation `ψ = asin(ζ_min)` of the damping-ratio test.
+const SECTOR_COS: f64 = 0.994_987_437_106_62; // √(1 − 0.1²)
+
+/// The most torque, as a fraction of the torque limit, that one encoder count may command
+/// through a zone's spring and filtered damper, `(K + B·α/dt)·count`. A reading that
+/// toggles between two counts (a rotor at rest on a count edge) makes the torque toggle
+/// by that much: above it, the knob buzzes. This is the knob's encoder-resolution bound
+/// (Abbott and Okamura bound a virtual wall's stiffness by the device's friction over the
+/// encoder resolution; here the bound is on the torque, and the velocity filter, chosen as
+/// long as the loop allows, is what keeps the damper's share small).
 ///
 /// ```
-/// use stiffspring::knob::{characteristic_polynomial, Latency};
-///
-/// // No gains: a free rotor, z·(z − 1)² (times 2).
-/// let (p, n) = characteristic_polynomial(0.0, 0.0, Latency::SameStep);
-/// assert_eq!((n, p), (3, [0.0, 2.0, -4.0, 2.0, 0.0]));
+/// assert_eq!(stiffspring::knob::stability::COUNT_TORQUE_FRACTION, 0.125);
 /// ```
-pub fn characteristic_polynomial(
-    stiffness: f64,
-    damping: f64,
-    latency: Latency,
-) -> ([f64; 5], usize) {
-    let (ck, cd) = (stiffness, damping);
-    match latency {
-        Latency::SameStep => ([-cd, 2.0 + ck, ck + cd - 4.0, 2.0, 0.0], 3),
-        Latency::OneStep => ([-cd, ck, 2.0 + ck + cd, -4.0, 2.0], 4),
+pub const COUNT_TORQUE_FRACTION: f64 = 0.125;
+
+/// The shortest filter step: `T_f ≤ 63·dt`. The filter state in fixed point keeps its
+/// truncation errors for about `1/α` periods, so `α` is bounded below (with four extra
+/// fractional bits in the state, the accumulated error stays under 8 LSB of the torque).
+pub(crate) const MIN_FILTER_ALPHA: f64 = 1.0 / 64.0;
+
+/// The filter constants `c = T_f·ω` tried, longest first, down to no filter.
+pub(crate) const FILTER_LADDER: [f64; 16] = [
+    0.25,
+    0.210_224_103_813_429,
+    0.176_776_695_296_637,
+    0.148_650_889_375_340,
+    0.125,
+    0.105_112_051_906_714,
+    0.088_388_347_648_318,
+    0.074_325_444_687_670,
+    0.0625,
+    0.052_556_025_953_357,
+    0.044_194_173_824_159,
+    0.037_162_722_343_835,
+    0.031_25,
+    0.022_097_086_912_079,
+    0.015_625,
+    0.0,
+];
+
+/// The dimensionless coefficients of one zone's loop: `C_k = K·dt²/J`, `C_d = B·dt/J` and
+/// the velocity filter's `α = dt/(T_f + dt)` (1: no filter).
+///
+/// ```
+/// use stiffspring::knob::{is_stable, Latency, LoopCoefficients};
+///
+/// let c = LoopCoefficients { stiffness: 0.01, damping: 0.15, filter: 0.5 };
+/// assert!(is_stable(c, Latency::OneStep));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct LoopCoefficients {
+    /// `C_k = K·dt²/J`.
+    pub stiffness: f64,
+    /// `C_d = B·dt/J`.
+    pub damping: f64,
+    /// `α` of the velocity filter, in `(0, 1]`.
+    pub filter: f64,
+}
+
+impl LoopCoefficients {
+    /// The loop with the inertia divided by `g` (both gains times `g`).
+    fn scaled(self, g: f64) -> Self {
+        LoopCoefficients {
+            stiffness: g * self.stiffness,
+            damping: g * self.damping,
+            filter: self.filter,
+        }
     }
 }
 
-/// The Schur–Cohn recursion (Jury's test in table form): all roots of the polynomial
-/// `c[0] + c[1]·z + … + c[n]·zⁿ` strictly inside the unit circle.
-fn schur_stable(coefficients: &[f64; 5], degree: usize) -> bool {
+/// A polynomial of degree at most 5, coefficients from `z⁰` up.
+type Poly = [f64; 6];
+
+/// The characteristic polynomial of the closed loop with `delay` periods (0 or 1) of
+/// delay, coefficients from `z⁰` up, and its degree (see the [module docs](self)). A zone
+/// without stiffness (`C_k = 0`) has a root at `z = 1` (the rotor rests anywhere); it is
+/// divided out, and the rest returned.
+///
+/// ```
+/// use stiffspring::knob::{characteristic_polynomial, LoopCoefficients};
+///
+/// // No filter, no delay: 2z³ + (C_k + C_d − 4)z² + (2 + C_k)z − C_d.
+/// let c = LoopCoefficients { stiffness: 0.1, damping: 0.3, filter: 1.0 };
+/// let (p, n) = characteristic_polynomial(c, 0);
+/// assert_eq!(n, 3);
+/// for (a, b) in p.iter().zip([-0.3, 2.1, -3.6, 2.0]) {
+///     assert!((a - b).abs() < 1e-12);
+/// }
+/// ```
+pub fn characteristic_polynomial(c: LoopCoefficients, delay: usize) -> ([f64; 6], usize) {
+    let (ck, cd, a) = (c.stiffness, c.damping, c.filter);
+    let b = 1.0 - a;
+    let d = delay.min(1);
+    let mut p = [0.0; 6];
+    if ck == 0.0 {
+        // (p / (z − 1)): 2(z − 1)(z − β)z^d + C_d·α·(z + 1).
+        let base = [2.0 * b, -2.0 - 2.0 * b, 2.0];
+        for (k, x) in base.iter().enumerate() {
+            p[k + d] += x;
+        }
+        p[0] += cd * a;
+        p[1] += cd * a;
+        return (p, 2 + d);
+    }
+    // 2(z − 1)²(z − β)z^d
+    let base = [-2.0 * b, 2.0 + 4.0 * b, -4.0 - 2.0 * b, 2.0];
+    for (k, x) in base.iter().enumerate() {
+        p[k + d] += x;
+    }
+    // (z + 1)·C_k·(z − β) = C_k·(z² + (1 − β)z − β)
+    p[0] += -ck * b;
+    p[1] += ck * (1.0 - b);
+    p[2] += ck;
+    // (z + 1)·C_d·α·(z − 1) = C_d·α·(z² − 1)
+    p[0] -= cd * a;
+    p[2] += cd * a;
+    (p, 3 + d)
+}
+
+/// The delays a latency is checked with.
+fn delays(latency: Latency) -> &'static [usize] {
+    match latency {
+        Latency::SameStep => &[0],
+        Latency::OneStep => &[1, 0],
+    }
+}
+
+/// Schur–Cohn on a real polynomial: every root strictly inside the unit circle.
+fn schur(coefficients: &Poly, degree: usize) -> bool {
     let mut p = *coefficients;
     let mut n = degree;
     while n > 0 {
-        // |c₀| < |cₙ|, then reduce: q_j = cₙ·c_{j+1} − c₀·c_{n−1−j}, degree n − 1.
-        // (NaN coefficients fail too.)
-        if p[0].abs() >= p[n].abs() || p[0].is_nan() || p[n].is_nan() {
+        if !(p[0].abs() < p[n].abs()) {
             return false;
         }
-        let mut q = [0.0; 5];
+        let mut q = [0.0; 6];
         for j in 0..n {
             q[j] = p[n] * p[j + 1] - p[0] * p[n - 1 - j];
         }
-        // Rescale so that the recursion neither overflows nor underflows.
-        let scale = q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        if scale <= 0.0 || !scale.is_finite() {
+        let scale = q[..n].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if !(scale > 0.0) || !scale.is_finite() {
             return false;
         }
         for x in q.iter_mut() {
@@ -219,346 +310,430 @@ fn schur_stable(coefficients: &[f64; 5], degree: usize) -> bool {
     true
 }
 
-/// True when the closed loop with these coefficients is asymptotically stable: every root
-/// of [`characteristic_polynomial`] strictly inside the unit circle.
-///
-/// ```
-/// use stiffspring::knob::{is_stable, Latency};
-///
-/// assert!(is_stable(0.1, 0.3, Latency::SameStep));
-/// // The article's rigid spring is stable as a particle, not on a rotor.
-/// assert!(!is_stable(1.0, 1.0, Latency::SameStep));
-/// assert!(!is_stable(0.2, 0.3, Latency::OneStep));
-/// ```
-pub fn is_stable(stiffness: f64, damping: f64, latency: Latency) -> bool {
-    if !stiffness.is_finite() || !damping.is_finite() {
+/// Polynomial product (coefficients from `w⁰` up; the result must fit).
+fn pmul<const N: usize>(a: &[f64], b: &[f64]) -> [f64; N] {
+    let mut r = [0.0; N];
+    for (i, x) in a.iter().enumerate() {
+        for (k, y) in b.iter().enumerate() {
+            if i + k < N {
+                r[i + k] += x * y;
+            }
+        }
+    }
+    r
+}
+
+/// The characteristic polynomial in the Tustin plane `w = (z' − 1)/(z' + 1)` of the loop
+/// scaled by `r` (`z = r·z'`; roots inside `|z| < r` ⇔ roots of this in the open left
+/// half-plane), given `r − 1` so that a small decay loses no digits. Built from the loop's
+/// factors (`z − 1 = ((r−1) + (r+1)w)/(1 − w)`, …) rather than from the coefficients in
+/// `z`, so that the gains of a soft spring, down to `C_k ≈ 1e−16`, are not lost against
+/// the `O(1)` coefficients of the double pole at `z = 1`. Without stiffness the factor of
+/// the rest position is divided out. Coefficients from `w⁰` up, and the degree.
+fn tustin_polynomial(c: LoopCoefficients, delay: usize, r_minus_1: f64) -> (Poly, usize) {
+    let (ck, cd, a) = (c.stiffness, c.damping, c.filter);
+    let rm = r_minus_1;
+    let r = 1.0 + rm;
+    let d = delay.min(1);
+    let l = [rm, 2.0 + rm]; // (z − 1)(1 − w)
+    let m = [rm + a, 2.0 + rm - a]; // (z − β)(1 − w)
+    let p = [2.0 + rm, rm]; // (z + 1)(1 − w)
+    let zd: [f64; 2] = if d == 1 { [r, r] } else { [1.0, 0.0] }; // z^d (1 − w)^d
+    let one_minus: [f64; 3] = if d == 1 {
+        [1.0, -2.0, 1.0]
+    } else {
+        [1.0, -1.0, 0.0]
+    }; // (1 − w)^(1+d)
+    let n = 3 + d;
+    if ck == 0.0 {
+        // q/L = 2·L·M·z^d + P·C_d·α·(1 − w)^(1+d)
+        let lm: [f64; 3] = pmul(&l, &m);
+        let a_part: [f64; 6] = pmul(&lm, &zd);
+        let b_part: [f64; 6] = pmul(&p, &one_minus);
+        let mut q = [0.0; 6];
+        for k in 0..6 {
+            q[k] = 2.0 * a_part[k] + cd * a * b_part[k];
+        }
+        return (q, n - 1);
+    }
+    // q = 2·L²·M·z^d + P·(C_k·M + C_d·α·L)·(1 − w)^(1+d)
+    let ll: [f64; 3] = pmul(&l, &l);
+    let llm: [f64; 4] = pmul(&ll, &m);
+    let a_part: [f64; 6] = pmul(&llm, &zd);
+    let ctrl = [ck * m[0] + cd * a * l[0], ck * m[1] + cd * a * l[1]];
+    let pc: [f64; 3] = pmul(&p, &ctrl);
+    let b_part: [f64; 6] = pmul(&pc, &one_minus);
+    let mut q = [0.0; 6];
+    for k in 0..6 {
+        q[k] = 2.0 * a_part[k] + b_part[k];
+    }
+    (q, n)
+}
+
+/// Routh–Hurwitz on a real polynomial (coefficients from `w⁰` up, degree `n ≤ 10`): every
+/// root strictly in the left half-plane.
+fn hurwitz(q: &[f64], n: usize) -> bool {
+    if n == 0 {
+        return q[0] != 0.0;
+    }
+    let sign = if q[n] < 0.0 { -1.0 } else { 1.0 };
+    // Rows of the Routh array: row0 = a_n, a_{n−2}, …; row1 = a_{n−1}, a_{n−3}, …
+    let mut r0 = [0.0; 6];
+    let mut r1 = [0.0; 6];
+    for j in 0..6 {
+        if n >= 2 * j {
+            r0[j] = sign * q[n - 2 * j];
+        }
+        if n > 2 * j {
+            r1[j] = sign * q[n - 2 * j - 1];
+        }
+    }
+    if !(r0[0] > 0.0) {
         return false;
     }
-    let (p, n) = characteristic_polynomial(stiffness, damping, latency);
-    schur_stable(&p, n)
+    for _ in 0..n {
+        if !(r1[0] > 0.0) || !r1[0].is_finite() {
+            return false;
+        }
+        let mut r2 = [0.0; 6];
+        for j in 0..5 {
+            r2[j] = r0[j + 1] - r0[0] * r1[j + 1] / r1[0];
+        }
+        // Rescale (a positive factor keeps the signs).
+        let scale = r1
+            .iter()
+            .chain(r2.iter())
+            .fold(0.0f64, |m, x| m.max(x.abs()));
+        if !(scale > 0.0) || !scale.is_finite() {
+            return false;
+        }
+        for x in r1.iter_mut().chain(r2.iter_mut()) {
+            *x /= scale;
+        }
+        r0 = r1;
+        r1 = r2;
+        if r1.iter().all(|&x| x == 0.0) {
+            // The last row: done when the array is exhausted.
+            break;
+        }
+    }
+    true
 }
 
-/// The spectral radius of the closed loop: the largest root magnitude of
-/// [`characteristic_polynomial`], by bisection on `r` with the roots of `p(r·z)` tested
-/// inside the unit circle: to about `1e−12` for a simple root, `1e−5` for a double one
-/// (whose position moves with the square root of the coefficients' rounding). `NaN` for
-/// non-finite coefficients.
+/// Every root of `q` (Tustin plane, no scaling) has a damping ratio `−Re w/|w|` of at
+/// least [`MIN_DAMPING_RATIO`] and `|w| < NYQUIST_GUARD`.
+///
+/// The sector: a root `w` is in it when both `w·e^{iψ}` and `w·e^{−iψ}` are in the left
+/// half-plane (`ψ = asin ζ_min`); those are the roots of `q(v·e^{−iψ})` and `q(v·e^{iψ})`,
+/// whose product is a real polynomial, `Q_m = Σ_{k+l=m} q_k·q_l·cos((k − l)·ψ)`, tested by
+/// Routh–Hurwitz.
+fn damped(q: &Poly, n: usize) -> bool {
+    // No root at |w| ≥ guard: q(guard·u) has its roots inside the unit circle.
+    let mut scaled = *q;
+    let mut g = 1.0;
+    for x in scaled.iter_mut().take(n + 1) {
+        *x *= g;
+        g *= NYQUIST_GUARD;
+    }
+    if !schur(&scaled, n) {
+        return false;
+    }
+    // cos(kψ) for k = 0..=n by the recurrence cos((k+1)ψ) = 2cosψ·cos(kψ) − cos((k−1)ψ).
+    let mut cos = [0.0; 6];
+    cos[0] = 1.0;
+    cos[1] = SECTOR_COS;
+    for k in 2..=n {
+        cos[k] = 2.0 * SECTOR_COS * cos[k - 1] - cos[k - 2];
+    }
+    let mut product = [0.0; 11];
+    for k in 0..=n {
+        for l in 0..=n {
+            product[k + l] += q[k] * q[l] * cos[k.abs_diff(l)];
+        }
+    }
+    hurwitz(&product, 2 * n)
+}
+
+/// True when the closed loop with these coefficients is asymptotically stable with
+/// `latency`'s delay (a zone without stiffness: stable apart from its rest position).
 ///
 /// ```
-/// use stiffspring::knob::{spectral_radius, Latency};
+/// use stiffspring::knob::{is_stable, Latency, LoopCoefficients};
 ///
-/// // A free rotor has its double pole at 1.
-/// assert!((spectral_radius(0.0, 0.0, Latency::SameStep) - 1.0).abs() < 1e-5);
-/// assert!(spectral_radius(0.1, 0.3, Latency::SameStep) < 1.0);
+/// let rigid = LoopCoefficients { stiffness: 1.0, damping: 1.0, filter: 1.0 };
+/// // The article's rigid spring is stable as a particle, not on a sampled rotor.
+/// assert!(!is_stable(rigid, Latency::SameStep));
 /// ```
-pub fn spectral_radius(stiffness: f64, damping: f64, latency: Latency) -> f64 {
-    if !stiffness.is_finite() || !damping.is_finite() {
+pub fn is_stable(c: LoopCoefficients, latency: Latency) -> bool {
+    if !(c.stiffness.is_finite() && c.damping.is_finite() && c.filter.is_finite()) {
+        return false;
+    }
+    let d = delays(latency)[0];
+    let (q, n) = tustin_polynomial(c, d, 0.0);
+    hurwitz(&q, n)
+}
+
+/// The spectral radius of the closed loop (largest root magnitude of
+/// [`characteristic_polynomial`] with `latency`'s delay), by bisection on `r` with the
+/// roots of `p(r·z)` tested inside the unit circle. NaN for non-finite coefficients.
+///
+/// ```
+/// use stiffspring::knob::{spectral_radius, Latency, LoopCoefficients};
+///
+/// let c = LoopCoefficients { stiffness: 0.01, damping: 0.15, filter: 0.5 };
+/// assert!(spectral_radius(c, Latency::SameStep) < 1.0);
+/// ```
+pub fn spectral_radius(c: LoopCoefficients, latency: Latency) -> f64 {
+    if !(c.stiffness.is_finite() && c.damping.is_finite() && c.filter.is_finite()) {
         return f64::NAN;
     }
-    let (p, n) = characteristic_polynomial(stiffness, damping, latency);
-    // Cauchy's bound: every root has |z| ≤ 1 + max |c_k/c_n|.
+    let d = delays(latency)[0];
+    let (p, n) = characteristic_polynomial(c, d);
     let mut hi = 1.0;
-    for c in &p[..n] {
-        hi = f64::max(hi, 1.0 + (c / p[n]).abs());
+    for x in &p[..n] {
+        hi = f64::max(hi, 1.0 + (x / p[n]).abs());
     }
-    let mut lo = 0.0;
-    for _ in 0..64 {
-        let r = 0.5 * (lo + hi);
-        let mut scaled = p;
-        let mut rk = 1.0;
-        for c in scaled.iter_mut().take(n + 1) {
-            *c *= rk;
-            rk *= r;
-        }
-        if schur_stable(&scaled, n) {
-            hi = r;
+    // Bisect on r − 1 (the digits that matter near the unit circle).
+    let (mut lo, mut hi) = (-1.0, hi - 1.0);
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        let (q, m) = tustin_polynomial(c, d, mid);
+        if hurwitz(&q, m) {
+            hi = mid;
         } else {
-            lo = r;
+            lo = mid;
         }
     }
-    hi
+    1.0 + hi
 }
 
-/// The largest stable `C_k` for a given `C_d` without delay,
-/// `2·C_d·(2 − C_d)/(2 + C_d)` (Jury's fourth condition, see the module docs); 0 outside
-/// `0 < C_d < 2`, where no stiffness is stable.
+/// The knob's guarantee for one zone (see the [module docs](self)): with the nominal
+/// coefficients `c`, at every loop gain `g ∈ [½, 2]` and each of `latency`'s delays, every
+/// pole lies inside the circle of radius `radius` and has a Tustin damping ratio of at
+/// least [`MIN_DAMPING_RATIO`] (and stays clear of `z = −1`); at the gains `1/64 … ¼` the
+/// loop is stable.
 ///
 /// ```
-/// use stiffspring::knob::same_step_stiffness_limit;
+/// use stiffspring::knob::{meets_guarantee, Latency, LoopCoefficients};
 ///
-/// let best = 2.0 * 2f64.sqrt() - 2.0;
-/// assert!((same_step_stiffness_limit(best) - (12.0 - 8.0 * 2f64.sqrt())).abs() < 1e-12);
-/// assert_eq!(same_step_stiffness_limit(1.0), 2.0 / 3.0);
-/// assert_eq!(same_step_stiffness_limit(0.0), 0.0);
+/// // A 0.1 N·m/rad detent on 1e−5 kg·m² at 1 kHz, damping ratio 0.7, a filter of 2 ms.
+/// let (dt, j, k) = (1e-3, 1e-5, 0.1);
+/// let b = 2.0 * 0.7 * (k * j as f64).sqrt();
+/// let c = LoopCoefficients { stiffness: k * dt * dt / j, damping: b * dt / j, filter: dt / (2e-3 + dt) };
+/// assert!(meets_guarantee(c, Latency::OneStep, 0.99));
+/// // Ten times stiffer with the same damping is not guaranteed.
+/// let stiff = LoopCoefficients { stiffness: 10.0 * c.stiffness, ..c };
+/// assert!(!meets_guarantee(stiff, Latency::OneStep, 0.99));
 /// ```
-pub fn same_step_stiffness_limit(damping: f64) -> f64 {
-    if damping > 0.0 && damping < 2.0 {
-        2.0 * damping * (2.0 - damping) / (2.0 + damping)
-    } else {
-        0.0
+pub fn meets_guarantee(c: LoopCoefficients, latency: Latency, radius: f64) -> bool {
+    if !(c.stiffness.is_finite()
+        && c.damping.is_finite()
+        && c.filter.is_finite()
+        && c.stiffness >= 0.0
+        && c.damping >= 0.0
+        && c.filter > 0.0
+        && c.filter <= 1.0)
+    {
+        return false;
     }
-}
-
-/// True when the loop is stable for both coefficients scaled by each of the checked gains
-/// (up to [`GAIN_MARGIN`]), for the latency and, for [`Latency::OneStep`], also without it.
-pub(crate) fn has_margin(stiffness: f64, damping: f64, latency: Latency) -> bool {
-    CHECKED_GAINS.iter().all(|&g| {
-        let (ck, cd) = (g * stiffness, g * damping);
-        is_stable(ck, cd, latency)
-            && (latency == Latency::SameStep || is_stable(ck, cd, Latency::SameStep))
-    })
-}
-
-/// `(C_k, C_d)` whose dominant closed-loop pole pair is the Tustin image of a continuous
-/// spring with `ω·dt = wh` and damping ratio `zeta`.
-///
-/// The pair's sum `a` and product `b` follow from `z = (1 + s·dt/2)/(1 − s·dt/2)` with
-/// `s² + 2ζω·s + ω² = 0`; matching `p(z) = (z² − a·z + b)·(remaining factor)` coefficient
-/// by coefficient is linear in the gains (the factorisations below).
-fn place(wh: f64, zeta: f64, latency: Latency) -> (f64, f64) {
-    let q = wh * wh / 4.0;
-    let den = 1.0 + zeta * wh + q;
-    let b = (1.0 - zeta * wh + q) / den;
-    let a = (2.0 - 2.0 * q) / den;
-    match latency {
-        // p = (z² − a·z + b)·(2z + c):  c = 2(a + b − 3)/(1 + a + b),
-        // C_d = −b·c, C_k = 2b − 2 − a·c.
-        Latency::SameStep => {
-            let c = 2.0 * (a + b - 3.0) / (1.0 + a + b);
-            (2.0 * b - 2.0 - a * c, -b * c)
-        }
-        // p = (z² − a·z + b)·(2z² + c·z + d):  c = 2a − 4,
-        // d = (2 − 2b + c·(a + b))/(1 + a + b), C_k = b·c − a·d, C_d = −b·d.
-        Latency::OneStep => {
-            let c = 2.0 * a - 4.0;
-            let d = (2.0 - 2.0 * b + c * (a + b)) / (1.0 + a + b);
-            (b * c - a * d, -b * d)
-        }
+    if c.stiffness == 0.0 && c.damping == 0.0 {
+        // No torque at all: a free rotor.
+        return true;
     }
+    meets_guarantee_below(c, latency, radius - 1.0)
 }
 
-/// The map from a strength in `[0, 1]` to `(C_k, C_d)` for one damping ratio and latency
-/// (see the [module docs](self)): `C_k = s·C_k,top`, with `C_d` placing the dominant
-/// poles at the damping ratio.
-///
-/// ```
-/// use stiffspring::knob::{is_stable, Latency, StrengthMap, GAIN_MARGIN};
-///
-/// let map = StrengthMap::new(0.7, Latency::OneStep)?;
-/// let (ck, cd) = map.coefficients(1.0)?;
-/// assert_eq!(ck, map.top_stiffness());
-/// assert!(is_stable(GAIN_MARGIN * ck, GAIN_MARGIN * cd, Latency::OneStep));
-/// assert_eq!(map.coefficients(0.5)?.0, 0.5 * ck); // linear in the strength
-/// assert!(map.coefficients(1.01).is_err());
-/// # Ok::<(), stiffspring::Error>(())
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct StrengthMap {
-    zeta: f64,
-    latency: Latency,
-    top_wh: f64,
-    top_stiffness: f64,
-}
-
-impl StrengthMap {
-    /// The map for damping ratio `zeta` and `latency` (set-up only: a few hundred Jury
-    /// tests in `f64`).
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for the damping ratio, outside
-    /// [`DAMPING_RATIO_RANGE`].
-    ///
-    /// ```
-    /// use stiffspring::knob::{Latency, StrengthMap};
-    ///
-    /// let same = StrengthMap::new(0.7, Latency::SameStep)?;
-    /// let delayed = StrengthMap::new(0.7, Latency::OneStep)?;
-    /// assert!(delayed.top_stiffness() < same.top_stiffness());
-    /// assert!(StrengthMap::new(0.05, Latency::OneStep).is_err());
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn new(zeta: f64, latency: Latency) -> Result<Self, Error> {
-        if !zeta.is_finite() {
-            return Err(Error::NotFinite(Parameter::DampingRatio));
-        }
-        if !(DAMPING_RATIO_RANGE.0..=DAMPING_RATIO_RANGE.1).contains(&zeta) {
-            return Err(Error::OutOfRange(Parameter::DampingRatio));
-        }
-        // Accepted while the margin holds and the curve still rises.
-        let ok = |wh: f64| {
-            let (ck, cd) = place(wh, zeta, latency);
-            let (ck_next, _) = place(wh * (1.0 + 1e-3), zeta, latency);
-            ck > 0.0 && ck_next > ck && has_margin(ck, cd, latency)
-        };
-        // Scan in steps of 1/64 (the top lies between 0.17 and 1 over the accepted ζ),
-        // then bisect between the last accepted and the first rejected point.
-        const STEP: f64 = 1.0 / 64.0;
-        let mut lo = 0.0;
-        let mut hi = 4.0;
-        let mut wh = STEP;
-        while wh < 4.0 {
-            if ok(wh) {
-                lo = wh;
-            } else {
-                hi = wh;
-                break;
+/// [`meets_guarantee`] with the decay radius given as `r − 1` (out of line: set-up calls
+/// it a few dozen times, and a firmware should carry it once).
+#[inline(never)]
+pub(crate) fn meets_guarantee_below(c: LoopCoefficients, latency: Latency, r_minus_1: f64) -> bool {
+    for &d in delays(latency) {
+        for &g in &ROBUST_GAINS {
+            let cg = c.scaled(g);
+            let (q, n) = tustin_polynomial(cg, d, r_minus_1);
+            if !hurwitz(&q, n) {
+                return false;
             }
-            wh += STEP;
+            let (q, n) = tustin_polynomial(cg, d, 0.0);
+            if !damped(&q, n) {
+                return false;
+            }
         }
+        for &g in &SMALL_GAINS {
+            let (q, n) = tustin_polynomial(c.scaled(g), d, 0.0);
+            if !hurwitz(&q, n) {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// `√x` for `x ≥ 0` without `libm` (Newton from a bit-level first guess; set-up only).
+pub(crate) fn sqrt(x: f64) -> f64 {
+    if !(x > 0.0) || !x.is_finite() {
+        return if x == 0.0 { 0.0 } else { x };
+    }
+    // Halve the exponent for the first guess.
+    let mut y = f64::from_bits((x.to_bits() >> 1) + (1023u64 << 51));
+    for _ in 0..6 {
+        y = 0.5 * (y + x / y);
+    }
+    y
+}
+
+/// The slowest decay rate of `J·s² + B·s + K` (per second): `B/2J` when underdamped, the
+/// slow real root otherwise, `B/J` without stiffness.
+pub(crate) fn slowest_decay(k: f64, b: f64, j: f64) -> f64 {
+    if k <= 0.0 {
+        return b / j;
+    }
+    let disc = b * b - 4.0 * j * k;
+    if disc <= 0.0 {
+        b / (2.0 * j)
+    } else {
+        2.0 * k / (b + sqrt(disc))
+    }
+}
+
+/// `e^{−x} − 1` from below for `0 ≤ x ≤ ½` (the alternating series cut after a negative
+/// term), so that the decay checked is at least the one asked.
+pub(crate) fn decay_radius(x: f64) -> f64 {
+    let x = x.clamp(0.0, 0.5);
+    -x + x * x / 2.0 - x * x * x / 6.0
+}
+
+/// The physical design of the loop: what [`meets_guarantee`] is asked about, per zone.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Plant {
+    pub(crate) dt: f64,
+    pub(crate) inertia: f64,
+    pub(crate) damping: f64,
+    pub(crate) latency: Latency,
+    /// Radius of the decay check, minus one.
+    pub(crate) radius: f64,
+}
+
+impl Plant {
+    /// The coefficients of a zone of stiffness `k` with the filter `alpha`.
+    pub(crate) fn coefficients(&self, k: f64, alpha: f64) -> LoopCoefficients {
+        LoopCoefficients {
+            stiffness: k * self.dt * self.dt / self.inertia,
+            damping: self.damping * self.dt / self.inertia,
+            filter: alpha,
+        }
+    }
+
+    /// `α` for the filter constant `c` over the frequency `omega`, at least
+    /// [`MIN_FILTER_ALPHA`].
+    pub(crate) fn alpha(&self, c: f64, omega: f64) -> f64 {
+        if c <= 0.0 || omega <= 0.0 {
+            1.0
+        } else {
+            let tf = c / omega;
+            (self.dt / (tf + self.dt)).max(MIN_FILTER_ALPHA)
+        }
+    }
+
+    /// True when a zone of stiffness `k` meets the guarantee with filter `alpha`.
+    pub(crate) fn zone_ok(&self, k: f64, alpha: f64) -> bool {
+        meets_guarantee_below(self.coefficients(k, alpha), self.latency, self.radius)
+    }
+
+    /// The stiffest zone that meets the guarantee without a filter (`limit` if that much
+    /// passes, 0 if nothing does), by bisection (error paths and reports only).
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn stiffness_limit(&self, limit: f64) -> f64 {
+        if !self.zone_ok(0.0, 1.0) {
+            return 0.0;
+        }
+        if self.zone_ok(limit, 1.0) {
+            return limit;
+        }
+        let (mut lo, mut hi) = (0.0, limit);
         for _ in 0..48 {
             let mid = 0.5 * (lo + hi);
-            if ok(mid) {
+            if self.zone_ok(mid, 1.0) {
                 lo = mid;
             } else {
                 hi = mid;
             }
         }
-        let (top_stiffness, _) = place(lo, zeta, latency);
-        Ok(StrengthMap {
-            zeta,
-            latency,
-            top_wh: lo,
-            top_stiffness,
-        })
-    }
-
-    /// The damping ratio.
-    ///
-    /// ```
-    /// use stiffspring::knob::{Latency, StrengthMap};
-    /// assert_eq!(StrengthMap::new(0.7, Latency::OneStep)?.damping_ratio(), 0.7);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn damping_ratio(&self) -> f64 {
-        self.zeta
-    }
-
-    /// The latency the map is designed for.
-    ///
-    /// ```
-    /// use stiffspring::knob::{Latency, StrengthMap};
-    /// assert_eq!(StrengthMap::new(1.0, Latency::SameStep)?.latency(), Latency::SameStep);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn latency(&self) -> Latency {
-        self.latency
-    }
-
-    /// `C_k` at strength 1.
-    ///
-    /// ```
-    /// use stiffspring::knob::{Latency, StrengthMap};
-    /// let top = StrengthMap::new(0.7, Latency::SameStep)?.top_stiffness();
-    /// assert!(top > 0.1 && top < 0.13);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn top_stiffness(&self) -> f64 {
-        self.top_stiffness
-    }
-
-    /// `ω·dt` of the continuous spring at strength 1 (its natural frequency times the
-    /// period).
-    ///
-    /// ```
-    /// use stiffspring::knob::{Latency, StrengthMap};
-    /// let wh = StrengthMap::new(0.7, Latency::OneStep)?.top_frequency_times_dt();
-    /// assert!(wh > 0.3 && wh < 0.4);
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn top_frequency_times_dt(&self) -> f64 {
-        self.top_wh
-    }
-
-    /// `(C_k, C_d)` for `strength ∈ [0, 1]`: `C_k = strength·C_k,top`, and the damping that
-    /// puts the dominant poles at the map's damping ratio. Strength 0 is `(0, 0)`, a free
-    /// rotor.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NotFinite`], [`Error::Negative`] or [`Error::OutOfRange`] (above 1) for
-    /// the strength.
-    ///
-    /// ```
-    /// use stiffspring::knob::{Latency, StrengthMap};
-    /// let map = StrengthMap::new(0.7, Latency::OneStep)?;
-    /// assert_eq!(map.coefficients(0.0)?, (0.0, 0.0));
-    /// assert!(map.coefficients(-0.1).is_err());
-    /// # Ok::<(), stiffspring::Error>(())
-    /// ```
-    pub fn coefficients(&self, strength: f64) -> Result<(f64, f64), Error> {
-        let s = check_strength(strength)?;
-        if s == 0.0 {
-            return Ok((0.0, 0.0));
-        }
-        let target = s * self.top_stiffness;
-        // C_k rises monotonically on [0, top_wh]: bisect for the point where it equals
-        // the target, then take its damping.
-        let (mut lo, mut hi) = (0.0, self.top_wh);
-        for _ in 0..64 {
-            let mid = 0.5 * (lo + hi);
-            if place(mid, self.zeta, self.latency).0 < target {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        let (_, cd) = place(hi, self.zeta, self.latency);
-        Ok((target, cd))
+        lo
     }
 }
 
-/// A strength must be finite and in `[0, 1]`.
-pub(crate) fn check_strength(strength: f64) -> Result<f64, Error> {
-    if !strength.is_finite() {
-        Err(Error::NotFinite(Parameter::Strength))
-    } else if strength < 0.0 {
-        Err(Error::Negative(Parameter::Strength))
-    } else if strength > 1.0 {
-        Err(Error::OutOfRange(Parameter::Strength))
-    } else {
-        Ok(strength)
-    }
-}
+/// The zones a knob can be in, for reports.
+pub(crate) const ZONES: [Zone; 3] = [Zone::Free, Zone::Magnet, Zone::Beyond];
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn jury_matches_the_closed_form_region() {
-        for i in 1..400 {
-            let cd = i as f64 / 200.0;
-            let limit = same_step_stiffness_limit(cd);
-            assert!(is_stable(limit * 0.999, cd, Latency::SameStep), "{cd}");
-            assert!(!is_stable(limit * 1.001, cd, Latency::SameStep), "{cd}");
+    fn sector_test_matches_roots() {
+        // (z − a)(z − ā): a = ρ·e^{iθ}. Tustin ζ of a, against the test.
+        for &(rho, theta) in &[
+            (0.9, 0.3),
+            (0.99, 0.3),
+            (0.95, 0.05),
+            (0.5, 2.9),
+            (0.9, 2.0),
+        ] {
+            let (ar, ai) = (rho * f64::cos(theta), rho * f64::sin(theta));
+            let p: Poly = [ar * ar + ai * ai, -2.0 * ar, 1.0, 0.0, 0.0, 0.0];
+            // w = (a − 1)/(a + 1)
+            let (nr, ni) = (ar - 1.0, ai);
+            let (dr, di) = (ar + 1.0, ai);
+            let d = dr * dr + di * di;
+            let (wr, wi) = ((nr * dr + ni * di) / d, (ni * dr - nr * di) / d);
+            let zeta = -wr / (wr * wr + wi * wi).sqrt();
+            let w = (wr * wr + wi * wi).sqrt();
+            let expected = zeta > MIN_DAMPING_RATIO && w < NYQUIST_GUARD;
+            // q(w) = (1 − w)² p((1 + w)/(1 − w)) for p = c0 + c1 z + z².
+            let (c0, c1) = (p[0], p[1]);
+            let q: Poly = [c0 + c1 + 1.0, 2.0 - 2.0 * c0, c0 - c1 + 1.0, 0.0, 0.0, 0.0];
+            assert_eq!(damped(&q, 2), expected, "{rho} {theta}: ζ {zeta} |w| {w}");
         }
     }
 
     #[test]
-    fn placement_hits_the_requested_poles() {
-        // The placed loop has the pair (a, b) as a factor: p(z) vanishes at its roots.
-        for latency in [Latency::SameStep, Latency::OneStep] {
-            let (wh, zeta) = (0.2, 0.7);
-            let (ck, cd) = place(wh, zeta, latency);
-            let q = wh * wh / 4.0;
-            let den = 1.0 + zeta * wh + q;
-            let (b, a) = ((1.0 - zeta * wh + q) / den, (2.0 - 2.0 * q) / den);
-            let re = a / 2.0;
-            let im = (b - re * re).sqrt();
-            let (p, n) = characteristic_polynomial(ck, cd, latency);
-            // Horner in complex arithmetic.
-            let (mut pr, mut pi) = (0.0, 0.0);
-            for k in (0..=n).rev() {
-                let (nr, ni) = (pr * re - pi * im + p[k], pr * im + pi * re);
-                pr = nr;
-                pi = ni;
+    fn tustin_polynomial_matches_the_z_polynomial() {
+        for &(ck, cd, a) in &[
+            (0.1, 0.3, 1.0),
+            (0.01, 0.2, 0.3),
+            (0.0, 0.2, 0.5),
+            (0.3, 0.5, 0.8),
+        ] {
+            for d in 0..2 {
+                let c = LoopCoefficients {
+                    stiffness: ck,
+                    damping: cd,
+                    filter: a,
+                };
+                let (p, n) = characteristic_polynomial(c, d);
+                let (q, m) = tustin_polynomial(c, d, 0.0);
+                assert_eq!(n, m);
+                // q(w) = (1 − w)ⁿ p((1 + w)/(1 − w)) at a few points.
+                for w in [0.1, -0.3, 0.7] {
+                    let z: f64 = (1.0 + w) / (1.0 - w);
+                    let pz: f64 = (0..=n).map(|k| p[k] * z.powi(k as i32)).sum();
+                    let qw: f64 = (0..=n).map(|k| q[k] * w.powi(k as i32)).sum();
+                    assert!(
+                        (qw - (1.0 - w).powi(n as i32) * pz).abs() < 1e-12,
+                        "{c:?} {d} {w}"
+                    );
+                }
+                assert_eq!(hurwitz(&q, m), schur(&p, n), "{c:?} {d}");
             }
-            assert!(
-                pr.abs() < 1e-12 && pi.abs() < 1e-12,
-                "{latency:?}: {pr} {pi}"
-            );
+        }
+    }
+
+    #[test]
+    fn sqrt_is_accurate() {
+        for x in [1e-300, 1e-12, 0.5, 2.0, 1e10, 1e300] {
+            assert!((sqrt(x) - x.sqrt()).abs() <= 2e-16 * x.sqrt(), "{x}");
         }
     }
 }
