@@ -10,7 +10,7 @@
 //! band in which a toggling count could switch back and forth is never crossed by one
 //! count (`tests/knob_hysteresis.rs`).
 
-use super::config::floor;
+use super::validate::floor;
 use crate::scalar::Scalar;
 
 /// How many detents the index may move in one period. At 1 kHz that is 4 000 detents per

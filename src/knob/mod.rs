@@ -138,11 +138,13 @@
 //! ```
 
 mod config;
+mod design;
 mod detents;
 mod error;
 mod events;
 mod law;
 pub mod stability;
+mod validate;
 
 pub use config::KnobConfig;
 pub use detents::MAX_MAGNETS;
@@ -155,8 +157,8 @@ pub use stability::{
 
 use crate::error::Parameter;
 use crate::scalar::Scalar;
-use config::nearest_index;
 use detents::{Ladder, Magnets};
+use validate::nearest_index;
 
 /// What one control period gives: the torque to command and the detent state.
 ///
