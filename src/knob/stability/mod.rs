@@ -80,7 +80,11 @@
 // The tests below are written `!(a < b)` on purpose: a NaN must fail them.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+mod polynomial;
+
 use super::error::Zone;
+pub(crate) use crate::math::sqrt;
+use polynomial::{damped, hurwitz, tustin_polynomial};
 
 /// When the torque computed from an angle reaches the rotor.
 ///
@@ -285,175 +289,6 @@ fn delays(latency: Latency) -> &'static [usize] {
     }
 }
 
-/// Schur–Cohn on a real polynomial: every root strictly inside the unit circle.
-fn schur(coefficients: &Poly, degree: usize) -> bool {
-    let mut p = *coefficients;
-    let mut n = degree;
-    while n > 0 {
-        if !(p[0].abs() < p[n].abs()) {
-            return false;
-        }
-        let mut q = [0.0; 6];
-        for j in 0..n {
-            q[j] = p[n] * p[j + 1] - p[0] * p[n - 1 - j];
-        }
-        let scale = q[..n].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        if !(scale > 0.0) || !scale.is_finite() {
-            return false;
-        }
-        for x in q.iter_mut() {
-            *x /= scale;
-        }
-        p = q;
-        n -= 1;
-    }
-    true
-}
-
-/// Polynomial product (coefficients from `w⁰` up; the result must fit).
-fn pmul<const N: usize>(a: &[f64], b: &[f64]) -> [f64; N] {
-    let mut r = [0.0; N];
-    for (i, x) in a.iter().enumerate() {
-        for (k, y) in b.iter().enumerate() {
-            if i + k < N {
-                r[i + k] += x * y;
-            }
-        }
-    }
-    r
-}
-
-/// The characteristic polynomial in the Tustin plane `w = (z' − 1)/(z' + 1)` of the loop
-/// scaled by `r` (`z = r·z'`; roots inside `|z| < r` ⇔ roots of this in the open left
-/// half-plane), given `r − 1` so that a small decay loses no digits. Built from the loop's
-/// factors (`z − 1 = ((r−1) + (r+1)w)/(1 − w)`, …) rather than from the coefficients in
-/// `z`, so that the gains of a soft spring, down to `C_k ≈ 1e−16`, are not lost against
-/// the `O(1)` coefficients of the double pole at `z = 1`. Without stiffness the factor of
-/// the rest position is divided out. Coefficients from `w⁰` up, and the degree.
-fn tustin_polynomial(c: LoopCoefficients, delay: usize, r_minus_1: f64) -> (Poly, usize) {
-    let (ck, cd, a) = (c.stiffness, c.damping, c.filter);
-    let rm = r_minus_1;
-    let r = 1.0 + rm;
-    let d = delay.min(1);
-    let l = [rm, 2.0 + rm]; // (z − 1)(1 − w)
-    let m = [rm + a, 2.0 + rm - a]; // (z − β)(1 − w)
-    let p = [2.0 + rm, rm]; // (z + 1)(1 − w)
-    let zd: [f64; 2] = if d == 1 { [r, r] } else { [1.0, 0.0] }; // z^d (1 − w)^d
-    let one_minus: [f64; 3] = if d == 1 {
-        [1.0, -2.0, 1.0]
-    } else {
-        [1.0, -1.0, 0.0]
-    }; // (1 − w)^(1+d)
-    let n = 3 + d;
-    if ck == 0.0 {
-        // q/L = 2·L·M·z^d + P·C_d·α·(1 − w)^(1+d)
-        let lm: [f64; 3] = pmul(&l, &m);
-        let a_part: [f64; 6] = pmul(&lm, &zd);
-        let b_part: [f64; 6] = pmul(&p, &one_minus);
-        let mut q = [0.0; 6];
-        for k in 0..6 {
-            q[k] = 2.0 * a_part[k] + cd * a * b_part[k];
-        }
-        return (q, n - 1);
-    }
-    // q = 2·L²·M·z^d + P·(C_k·M + C_d·α·L)·(1 − w)^(1+d)
-    let ll: [f64; 3] = pmul(&l, &l);
-    let llm: [f64; 4] = pmul(&ll, &m);
-    let a_part: [f64; 6] = pmul(&llm, &zd);
-    let ctrl = [ck * m[0] + cd * a * l[0], ck * m[1] + cd * a * l[1]];
-    let pc: [f64; 3] = pmul(&p, &ctrl);
-    let b_part: [f64; 6] = pmul(&pc, &one_minus);
-    let mut q = [0.0; 6];
-    for k in 0..6 {
-        q[k] = 2.0 * a_part[k] + b_part[k];
-    }
-    (q, n)
-}
-
-/// Routh–Hurwitz on a real polynomial (coefficients from `w⁰` up, degree `n ≤ 10`): every
-/// root strictly in the left half-plane.
-fn hurwitz(q: &[f64], n: usize) -> bool {
-    if n == 0 {
-        return q[0] != 0.0;
-    }
-    let sign = if q[n] < 0.0 { -1.0 } else { 1.0 };
-    // Rows of the Routh array: row0 = a_n, a_{n−2}, …; row1 = a_{n−1}, a_{n−3}, …
-    let mut r0 = [0.0; 6];
-    let mut r1 = [0.0; 6];
-    for j in 0..6 {
-        if n >= 2 * j {
-            r0[j] = sign * q[n - 2 * j];
-        }
-        if n > 2 * j {
-            r1[j] = sign * q[n - 2 * j - 1];
-        }
-    }
-    if !(r0[0] > 0.0) {
-        return false;
-    }
-    for _ in 0..n {
-        if !(r1[0] > 0.0) || !r1[0].is_finite() {
-            return false;
-        }
-        let mut r2 = [0.0; 6];
-        for j in 0..5 {
-            r2[j] = r0[j + 1] - r0[0] * r1[j + 1] / r1[0];
-        }
-        // Rescale (a positive factor keeps the signs).
-        let scale = r1
-            .iter()
-            .chain(r2.iter())
-            .fold(0.0f64, |m, x| m.max(x.abs()));
-        if !(scale > 0.0) || !scale.is_finite() {
-            return false;
-        }
-        for x in r1.iter_mut().chain(r2.iter_mut()) {
-            *x /= scale;
-        }
-        r0 = r1;
-        r1 = r2;
-        if r1.iter().all(|&x| x == 0.0) {
-            // The last row: done when the array is exhausted.
-            break;
-        }
-    }
-    true
-}
-
-/// Every root of `q` (Tustin plane, no scaling) has a damping ratio `−Re w/|w|` of at
-/// least [`MIN_DAMPING_RATIO`] and `|w| < NYQUIST_GUARD`.
-///
-/// The sector: a root `w` is in it when both `w·e^{iψ}` and `w·e^{−iψ}` are in the left
-/// half-plane (`ψ = asin ζ_min`); those are the roots of `q(v·e^{−iψ})` and `q(v·e^{iψ})`,
-/// whose product is a real polynomial, `Q_m = Σ_{k+l=m} q_k·q_l·cos((k − l)·ψ)`, tested by
-/// Routh–Hurwitz.
-fn damped(q: &Poly, n: usize) -> bool {
-    // No root at |w| ≥ guard: q(guard·u) has its roots inside the unit circle.
-    let mut scaled = *q;
-    let mut g = 1.0;
-    for x in scaled.iter_mut().take(n + 1) {
-        *x *= g;
-        g *= NYQUIST_GUARD;
-    }
-    if !schur(&scaled, n) {
-        return false;
-    }
-    // cos(kψ) for k = 0..=n by the recurrence cos((k+1)ψ) = 2cosψ·cos(kψ) − cos((k−1)ψ).
-    let mut cos = [0.0; 6];
-    cos[0] = 1.0;
-    cos[1] = SECTOR_COS;
-    for k in 2..=n {
-        cos[k] = 2.0 * SECTOR_COS * cos[k - 1] - cos[k - 2];
-    }
-    let mut product = [0.0; 11];
-    for k in 0..=n {
-        for l in 0..=n {
-            product[k + l] += q[k] * q[l] * cos[k.abs_diff(l)];
-        }
-    }
-    hurwitz(&product, 2 * n)
-}
-
 /// True when the closed loop with these coefficients is asymptotically stable with
 /// `latency`'s delay (a zone without stiffness: stable apart from its rest position).
 ///
@@ -567,19 +402,6 @@ pub(crate) fn meets_guarantee_below(c: LoopCoefficients, latency: Latency, r_min
         }
     }
     true
-}
-
-/// `√x` for `x ≥ 0` without `libm` (Newton from a bit-level first guess; set-up only).
-pub(crate) fn sqrt(x: f64) -> f64 {
-    if !(x > 0.0) || !x.is_finite() {
-        return if x == 0.0 { 0.0 } else { x };
-    }
-    // Halve the exponent for the first guess.
-    let mut y = f64::from_bits((x.to_bits() >> 1) + (1023u64 << 51));
-    for _ in 0..6 {
-        y = 0.5 * (y + x / y);
-    }
-    y
 }
 
 /// The slowest decay rate of `J·s² + B·s + K` (per second): `B/2J` when underdamped, the
@@ -727,13 +549,6 @@ mod tests {
                 }
                 assert_eq!(hurwitz(&q, m), schur(&p, n), "{c:?} {d}");
             }
-        }
-    }
-
-    #[test]
-    fn sqrt_is_accurate() {
-        for x in [1e-300, 1e-12, 0.5, 2.0, 1e10, 1e300] {
-            assert!((sqrt(x) - x.sqrt()).abs() <= 2e-16 * x.sqrt(), "{x}");
         }
     }
 }
