@@ -13,7 +13,8 @@
 //! The `fixed` crate provides the types, the conversions and the saturating add; the
 //! products are taken on the raw bits, with the rounding chosen in the parent module.
 
-use super::wide::{FastGains, broad, broad_step, narrow, narrow_step};
+use super::fast::{FastGains, broad_step, narrow_step};
+use super::wide::{broad, narrow};
 use super::{Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 

@@ -2,6 +2,8 @@
 //! backends keep a spring's gains and factors in.
 
 #[cfg(feature = "fixed")]
+mod fast;
+#[cfg(feature = "fixed")]
 mod fixed_point;
 mod float;
 #[cfg(feature = "fixed")]

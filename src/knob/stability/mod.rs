@@ -491,6 +491,7 @@ pub(crate) const ZONES: [Zone; 3] = [Zone::Free, Zone::Magnet, Zone::Beyond];
 
 #[cfg(test)]
 mod tests {
+    use super::polynomial::schur;
     use super::*;
 
     #[test]
