@@ -8,7 +8,7 @@
 //! The grid: f·dt from 1e−4 to 0.4, ζ from 0 to 10, two starts (released from rest, and
 //! flung through the target). Run with `--nocapture` for the table of every backend.
 
-mod reference;
+use lab::reference;
 
 use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
 

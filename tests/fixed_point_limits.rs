@@ -16,9 +16,7 @@
 //!
 //! `cargo test --release --test fixed_point_limits -- --nocapture` prints the tables.
 
-mod linear;
-
-use linear::Topology;
+use lab::linear::Topology;
 use stiffspring::scene::{LimitPolicy, Scene, SceneConfig, Stepper};
 use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
 

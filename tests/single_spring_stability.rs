@@ -24,7 +24,7 @@
 //! `cargo test`); `PROPTEST_CASES=100000 cargo test --release --test
 //! single_spring_stability` is the full run.
 
-mod reference;
+use lab::reference;
 
 use proptest::prelude::*;
 use stiffspring::kernel::{BodyWeights, Coefficients};

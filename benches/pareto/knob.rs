@@ -11,7 +11,7 @@
 //! 0). The timed loop is `update` on a precomputed array of angles in the backend.
 #![allow(dead_code)]
 
-use crate::measure::Candidate;
+use lab::measure::Candidate;
 use std::hint::black_box;
 use stiffspring::{I16F16, I32F32, Knob, KnobConfig, Scalar};
 

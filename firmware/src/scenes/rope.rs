@@ -4,7 +4,6 @@
 //! Units are metres, kilograms and seconds; positions stay within ±2 m, well inside the
 //! `I16F16` range. Every particle carries at most two springs, so the article's limit is
 //! `1/(2 + 1)`: the rope runs at `C_k = C_d = 0.3`.
-#![allow(dead_code)]
 
 use stiffspring::length::LengthKernel;
 use stiffspring::scene::{ParticleId, Scene, SceneConfig};

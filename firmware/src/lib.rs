@@ -1,4 +1,6 @@
-//! Support for the examples that run both on the host and on a microcontroller.
+//! What the examples that run both on the host and on a microcontroller share: the
+//! skeleton below, the [`scenes`] they play and the [`golden`] values they check against.
+//! `no_std`; the library is its only dependency.
 //!
 //! An example is one file with the same scene code for both: a std `main` on the host,
 //! and a `#![no_std]`, `#![no_main]` cortex-m-rt firmware on `thumbv7em-none-eabihf`
@@ -8,11 +10,7 @@
 //! ```ignore
 //! #![cfg_attr(target_os = "none", no_std, no_main)]
 //!
-//! #[macro_use]
-//! #[path = "firmware/text.rs"] // or "firmware/log_defmt.rs" to log through defmt
-//! mod log;
-//! #[path = "firmware/mod.rs"]
-//! mod firmware;
+//! firmware::output!(text); // or `firmware::output!(defmt);` to log through defmt
 //!
 //! fn run() -> bool {
 //!     say!("hello from {}", firmware::MACHINE);
@@ -23,14 +21,22 @@
 //! ```
 //!
 //! `say!` takes the format strings both `core::fmt` and defmt understand: plain `{}`
-//! with numbers, `bool` and `&str`.
+//! with numbers, `bool` and `&str`. The example links, on the target, what the macros
+//! name: `cortex-m` (with `critical-section-single-core`), `cortex-m-rt`, `semihosting`,
+//! and for `output!(defmt)` also `defmt` and `defmt-semihosting` (the root manifest's
+//! target dev-dependencies).
 //!
 //! A new example then runs with `cargo run --release --target … --example NAME`; CI runs
 //! it on both machines once its name is in `firmware_examples` in `.ci/firmware`. To
-//! check it against the f64 reference, put its scene in `examples/scenes/NAME.rs` (data
-//! and builders shared with the test), generate `examples/golden/NAME.rs` in
+//! check it against the f64 reference, put its scene in `firmware/src/scenes/NAME.rs`
+//! (data and builders shared with the test), generate `firmware/src/golden/NAME.rs` in
 //! `tests/golden.rs` (as the `value` and `rope` scenes do) and compare with [`Tally`].
-#![allow(dead_code, unused_macros, unused_imports)]
+#![no_std]
+
+pub mod golden;
+pub mod scenes;
+
+mod output;
 
 /// Where the example runs, for its report.
 #[cfg(not(target_os = "none"))]
@@ -40,13 +46,10 @@ pub const MACHINE: &str = "Cortex-M4F (thumbv7em-none-eabihf)";
 #[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
 pub const MACHINE: &str = "Cortex-M0 (thumbv6m-none-eabi)";
 
-/// The critical-section implementation defmt-semihosting needs (single core).
-#[cfg(target_os = "none")]
-use cortex_m as _;
-
 /// Declares the program's entry point around `run: fn() -> bool`: a std `main` on the
 /// host, cortex-m-rt's `#[entry]` on the target. Either way the process (QEMU, for the
 /// firmware) exits with success exactly when `run` returns `true`.
+#[macro_export]
 macro_rules! main {
     ($run:path) => {
         #[cfg(not(target_os = "none"))]
@@ -58,29 +61,29 @@ macro_rules! main {
             }
         }
 
-        firmware::entry!($run);
+        $crate::entry!($run);
     };
 }
-pub(crate) use main;
 
 /// Only the target's entry point around `run: fn() -> bool`, for an example that has
 /// its own host `main`.
+///
+/// The firmware ends through semihosting with status 0 or 1; QEMU exits with the same
+/// status.
+#[macro_export]
 macro_rules! entry {
     ($run:path) => {
+        /// The critical-section implementation defmt-semihosting needs (single core).
+        #[cfg(target_os = "none")]
+        use cortex_m as _;
+
         #[cfg(target_os = "none")]
         #[cortex_m_rt::entry]
         fn main() -> ! {
             let ok = $run();
-            firmware::exit(ok)
+            semihosting::process::exit(if ok { 0 } else { 1 })
         }
     };
-}
-pub(crate) use entry;
-
-/// Ends the firmware through semihosting; QEMU exits with the same status.
-#[cfg(target_os = "none")]
-pub fn exit(ok: bool) -> ! {
-    semihosting::process::exit(if ok { 0 } else { 1 })
 }
 
 /// Compares a trajectory with its golden values and remembers the worst deviation.

@@ -3,10 +3,9 @@
 //!
 //! Shared, as data only, by `examples/value.rs` (which plays it on the library, on the
 //! host and on the microcontrollers) and by `tests/golden.rs` (which plays it on the
-//! analytic solution of the f64 reference model and writes `examples/golden/value.rs`).
+//! analytic solution of the f64 reference model and writes `firmware/src/golden/value.rs`).
 //! Change it, then regenerate the golden values:
 //! `STIFFSPRING_BLESS=1 cargo test --test golden`.
-#![allow(dead_code)]
 
 /// The display's frame time, in seconds.
 pub const DT: f64 = 1.0 / 60.0;

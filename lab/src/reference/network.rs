@@ -26,7 +26,9 @@
 //! - Both steppers end with symplectic Euler: all non-pinned positions
 //!   advance with the new velocities, `x += v·dt`.
 //!
-//! Two update orders (DESIGN.md "The math" item 2):
+//! Two update orders (for a single spring the force form integrated by
+//! symplectic Euler and the impulse form are the same map; for a network they
+//! differ, and both are legitimate):
 //! - [`Network::step_gauss_seidel`]: the impulse of each spring, in the order
 //!   of `springs`, is applied at once, so later springs see the velocities
 //!   left by earlier ones.

@@ -6,8 +6,7 @@
 //! candidate in turn, and the median of each candidate then drops the slowed batches.
 //! Absolute nanoseconds still move from run to run; compare ratios from one run.
 //!
-//! Shared by `benches/pareto` and the tour (`examples/tour/bench.rs`).
-#![allow(dead_code)]
+//! Used by `benches/pareto` and the tour (`examples/tour/bench.rs`).
 
 use std::time::{Duration, Instant};
 

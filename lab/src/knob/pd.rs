@@ -1,6 +1,6 @@
 //! The knob against SmartKnob-style PD detents, on the same simulated rotor (exact ZOH,
-//! one period of delay as in SimpleFOC firmware, 14-bit encoder). Shared by
-//! `tests/knob_vs_pd.rs` and the tour.
+//! one period of delay as in SimpleFOC firmware, 14-bit encoder). Used by
+//! `tests/knob_vs_pd.rs` and the tour, which hand [`compare`] the library's knob.
 //!
 //! Both run the same detent index logic (24 detents per turn, snap point 0.55, two
 //! counts of hysteresis) and the same torque limit; only the torque law differs:
@@ -8,7 +8,8 @@
 //! - **PD**, as SmartKnob does: `τ = −k_p·e − k_d·ω`, `ω` the backward difference of the
 //!   encoder angles over `dt`, with SmartKnob's raw ratio `k_d = 0.005 s·k_p`
 //!   (`PID_velocity.P = 4·strength`, `D = 0.02·strength` for detents wider than 8°);
-//! - **knob**: this crate, `strength = k_p/k_top`, damping ratio 0.7.
+//! - **knob**: stiffspring's knob, `strength = k_p/k_top`, damping ratio 0.7, set up by
+//!   the caller (this module does not use the library).
 //!
 //! Matched on perceived strength: the same small-signal stiffness `k_p`, so the same
 //! peak detent torque `k_p·0.55·width`. Each case is a flick of 20 rad/s released on a
@@ -16,7 +17,6 @@
 
 use super::{COUNT, Plant};
 use std::f64::consts::TAU;
-use stiffspring::{Knob, KnobConfig};
 
 pub const INERTIA: f64 = 1e-5;
 pub const LIMIT: f64 = 0.05;
@@ -66,7 +66,9 @@ impl Pd {
     }
 }
 
-fn flick(rate: f64, mut law: impl FnMut(f64) -> (f64, i32)) -> FlickResult {
+/// A flick of 20 rad/s released on a detent centre, no hand, with the torque law `law`
+/// (encoder angle → torque in N·m and detent index) at `rate` hertz.
+pub fn flick(rate: f64, mut law: impl FnMut(f64) -> (f64, i32)) -> FlickResult {
     let dt = 1.0 / rate;
     let width = TAU / DETENTS;
     let mut plant = Plant::new(INERTIA, dt, 1.0);
@@ -128,8 +130,14 @@ pub struct Comparison {
     pub knob_zeta: f64,
 }
 
-/// Runs both laws on the same flick.
-pub fn compare(rate: f64, kp: f64) -> Comparison {
+/// The knob's law for [`compare`], set up by the caller: encoder angle → (torque in N·m,
+/// detent index), and the knob's `C_d` (for its small-signal damping ratio).
+pub type KnobLaw = (Box<dyn FnMut(f64) -> (f64, i32)>, f64);
+
+/// Runs both laws on the same flick. `knob(dt, width, k_p)` sets up the knob for a
+/// period `dt`, detents `width` apart and small-signal stiffness `k_p`, on this module's
+/// rotor ([`INERTIA`]), torque limit ([`LIMIT`]) and hysteresis (two counts).
+pub fn compare(rate: f64, kp: f64, knob: impl FnOnce(f64, f64, f64) -> KnobLaw) -> Comparison {
     let width = TAU / DETENTS;
     let dt = 1.0 / rate;
     let kd = SMARTKNOB_RATIO * kp;
@@ -144,17 +152,8 @@ pub fn compare(rate: f64, kp: f64) -> Comparison {
         previous: 0.0,
     };
     let pd_result = flick(rate, |a| pd.update(a));
-    let config = KnobConfig::new(dt, INERTIA, LIMIT)
-        .detent_width(width)
-        .hysteresis(2.0 * COUNT);
-    let strength = kp / config.stiffness_at_full_strength().expect("valid config");
-    let mut knob =
-        Knob::<f32>::new(&config.detent_strength(strength), 0.0).expect("accepted strength");
-    let (_, cd) = knob.loop_coefficients()[0];
-    let knob_result = flick(rate, |a| {
-        let out = knob.update(a as f32);
-        (f64::from(out.torque) * LIMIT, out.detent)
-    });
+    let (mut law, cd) = knob(dt, width, kp);
+    let knob_result = flick(rate, &mut law);
     Comparison {
         pd: pd_result,
         knob: knob_result,

@@ -1,9 +1,11 @@
-//! Test support for the network stability measurements: topologies (ropes, meshes,
-//! mass profiles, pinning), the share count the scene uses, the **linearised step matrix**
-//! of a network about its rest state for either stepper, and a dense eigenvalue solver.
+//! The network stability measurements: topologies (ropes, meshes, mass profiles,
+//! pinning), the share count the scene uses, the **linearised step matrix** of a network
+//! about its rest state for either stepper, and its eigenvalues (nalgebra's real Schur
+//! form, after Parlett–Reinsch balancing).
 //!
 //! Nothing here uses the library: the step matrix is written from the position-level
-//! impulse of DESIGN.md ("The math", item 1),
+//! impulse of the seed article (eq. 27 and 28 with the step velocity `u = v·dt` and the
+//! weights `w_a = m_b/(m_a + m_b)`, `w_b = 1 − w_a` of the two bodies),
 //!
 //! ```text
 //! δ = −(C_k·x + C_d·u_rel)     u_a −= w_a·δ·n     u_b += w_b·δ·n     (then x_i += u_i)
@@ -24,11 +26,58 @@
 //! are not instabilities, and a dense solver resolves a Jordan block only to about
 //! `√ε ≈ 1.5e−8`, so [`growth_rate`] ignores eigenvalues within `NEUTRAL` of 1.
 
-#![allow(dead_code)]
+use crate::rng::Rng;
+use nalgebra::linalg::{Schur, balancing};
+use nalgebra::{Complex, DMatrix};
 
-pub mod eigen;
+/// A dense real matrix.
+pub type Matrix = DMatrix<f64>;
 
-pub use eigen::{Matrix, eigenvalues};
+/// Deflation tolerances of the Schur iteration, tried in turn (relative to the
+/// neighbouring diagonal entries).
+///
+/// nalgebra's Francis iteration has no exceptional shifts, and with a tolerance of one
+/// machine epsilon (its default, with no iteration limit) it can cycle forever on these
+/// step matrices: a free rope of three particles under Jacobi at `C = 1`, or a 3×3 mesh
+/// with diagonals at `C = 1.5`, whose eigenvalues lie on the unit circle. 1e−14 (45 ulp)
+/// converges on every matrix the tests build; a deflated entry that small moves a
+/// well-conditioned eigenvalue by as much, far below the tests' tolerances (1e−9, and
+/// [`NEUTRAL`]). The looser ones are a fallback.
+const DEFLATION: [f64; 3] = [1e-14, 1e-12, 1e-10];
+
+/// The eigenvalues of a real square matrix, complex ones in conjugate pairs.
+///
+/// The matrix is balanced first (a diagonal similarity that equalises the norms of rows
+/// and columns, so that couplings of very different scale, such as mass ratios of 1:100,
+/// do not cost accuracy), then reduced to real Schur form by nalgebra; the eigenvalues
+/// are read from its 1×1 and 2×2 diagonal blocks.
+///
+/// # Panics
+///
+/// When the iteration converges at none of the [`DEFLATION`] tolerances within `100·n`
+/// sweeps each; the panic names the size.
+pub fn eigenvalues(m: &Matrix) -> Vec<Complex<f64>> {
+    let n = m.nrows();
+    assert!(m.is_square(), "eigenvalues of a {n}×{} matrix", m.ncols());
+    if n == 0 {
+        return Vec::new();
+    }
+    let mut balanced = m.clone();
+    balancing::balance_parlett_reinsch(&mut balanced);
+    let schur = DEFLATION
+        .iter()
+        .find_map(|&eps| Schur::try_new(balanced.clone(), eps, 100 * n))
+        .unwrap_or_else(|| panic!("the Schur iteration did not converge ({n}×{n})"));
+    schur.complex_eigenvalues().iter().copied().collect()
+}
+
+/// The largest `|λ|` of `m`.
+pub fn spectral_radius(m: &Matrix) -> f64 {
+    eigenvalues(m)
+        .into_iter()
+        .map(|e| e.norm())
+        .fold(0.0, f64::max)
+}
 
 /// How close to `λ = 1` an eigenvalue must be to count as a neutral (drift) mode.
 pub const NEUTRAL: f64 = 1e-6;
@@ -97,7 +146,7 @@ impl Topology {
     }
 
     /// A `w × h` square mesh of unit masses, spacing 1, springs in the order of
-    /// `tests/reference/network.rs::mesh_2d` (right and up neighbour per particle in
+    /// `crate::reference::network::mesh_2d` (right and up neighbour per particle in
     /// row-major order, then both diagonals per cell). `pin_top_row` pins the top row (a
     /// hanging jelly).
     pub fn mesh(w: usize, h: usize, diagonals: bool, pin_top_row: bool) -> Self {
@@ -215,9 +264,9 @@ impl Topology {
         // Rows of the spring stage, built by applying each spring's rank-one update to
         // the rows of an identity (Gauss-Seidel: to the running product; Jacobi: every
         // update reads the identity and writes a separate sum).
-        let identity = Matrix::identity(n);
-        let mut stage = Matrix::identity(n);
-        let mut sum = Matrix::zeros(n);
+        let identity = Matrix::identity(n, n);
+        let mut stage = Matrix::identity(n, n);
+        let mut sum = Matrix::zeros(n, n);
         for s in self.library_order() {
             let (a, b) = self.springs[s];
             let d = [
@@ -249,8 +298,8 @@ impl Topology {
                 let mut x = 0.0;
                 let mut v = 0.0;
                 for &(i, c) in &j {
-                    x += c * source.at(i, col);
-                    v += c * source.at(half + i, col);
+                    x += c * source[(i, col)];
+                    v += c * source[(half + i, col)];
                 }
                 *dcol = -ck[s] * x - cd[s] * v;
             }
@@ -260,20 +309,18 @@ impl Topology {
             };
             for &(row, c) in &g {
                 for (col, dcol) in delta.iter().enumerate() {
-                    *target.at_mut(row, col) += c * dcol;
+                    target[(row, col)] += c * dcol;
                 }
             }
         }
         if order == Order::Jacobi {
-            for (s, x) in stage.data.iter_mut().zip(&sum.data) {
-                *s += x;
-            }
+            stage += &sum;
         }
         // Drift: p ← p + u (with the new u).
         let mut step = stage.clone();
         for row in 0..half {
             for col in 0..n {
-                *step.at_mut(row, col) += stage.at(half + row, col);
+                step[(row, col)] += stage[(half + row, col)];
             }
         }
         step
@@ -292,7 +339,7 @@ impl Topology {
         // Nonzero eigenvalues equal those of M^{-½}·Jᵀ·R·J·M^{-½} (free particles only).
         let (index, free) = self.state_index();
         let n = 2 * free;
-        let mut k = Matrix::zeros(n);
+        let mut k = Matrix::zeros(n, n);
         for &(a, b) in &self.springs {
             let (ia, ib) = (self.inverse_masses[a], self.inverse_masses[b]);
             if ia + ib == 0.0 {
@@ -316,7 +363,7 @@ impl Topology {
             }
             for &(r1, c1) in &j {
                 for &(r2, c2) in &j {
-                    *k.at_mut(r1, r2) += r * c1 * c2;
+                    k[(r1, r2)] += r * c1 * c2;
                 }
             }
         }
@@ -334,7 +381,7 @@ pub fn growth_rate(m: &Matrix) -> f64 {
     eigenvalues(m)
         .into_iter()
         .filter(|e| (e.re - 1.0).hypot(e.im) > NEUTRAL)
-        .map(|e| e.modulus())
+        .map(|e| e.norm())
         .fold(0.0, f64::max)
         - 1.0
 }
@@ -413,29 +460,6 @@ pub fn square_limit(top: &Topology, order: Order, hi: f64, tol: f64) -> f64 {
     lo
 }
 
-/// A small deterministic generator (Knuth's MMIX LCG), for reproducible deformations.
-pub struct Lcg(pub u64);
-
-impl Lcg {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        self.0
-    }
-
-    /// Uniform in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in `[lo, hi)`.
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
-
 impl Topology {
     /// The shortest rest length.
     pub fn shortest(&self) -> f64 {
@@ -455,7 +479,7 @@ impl Topology {
     /// uniform in `±fraction·shortest`: a deformation of about `fraction` (strains of up
     /// to `2·√2·fraction`).
     pub fn deformed(&self, fraction: f64, seed: u64) -> Vec<[f64; 2]> {
-        let mut rng = Lcg(seed);
+        let mut rng = Rng::seeded(seed);
         let scale = fraction * self.shortest();
         self.positions
             .iter()
@@ -478,8 +502,8 @@ impl Topology {
     /// A random network: 2 to 8 particles in the unit square (no two closer than 0.05),
     /// masses log-uniform over `mass_ratio` (a quarter pinned), 1 to 14 springs between
     /// random pairs (duplicates allowed: parallel springs are the worst geometry).
-    pub fn random(rng: &mut Lcg, mass_ratio: f64) -> Self {
-        let k = 2 + (rng.next_u64() % 7) as usize;
+    pub fn random(rng: &mut Rng, mass_ratio: f64) -> Self {
+        let k = 2 + rng.below(7);
         let mut positions: Vec<[f64; 2]> = Vec::new();
         while positions.len() < k {
             let p = [rng.unit(), rng.unit()];
@@ -501,9 +525,9 @@ impl Topology {
             })
             .collect();
         let mut springs = Vec::new();
-        for _ in 0..1 + rng.next_u64() % 14 {
-            let a = (rng.next_u64() % k as u64) as usize;
-            let b = (rng.next_u64() % k as u64) as usize;
+        for _ in 0..1 + rng.below(14) {
+            let a = rng.below(k);
+            let b = rng.below(k);
             if a != b && (inverse_masses[a] > 0.0 || inverse_masses[b] > 0.0) {
                 springs.push((a, b));
             }
@@ -527,5 +551,73 @@ impl Topology {
             top.inverse_masses[0] = 1.0;
         }
         top
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn eigenvalues_of_known_spectra() {
+        // Block-diagonal 2×2 rotations-and-scalings plus real eigenvalues, hidden by a
+        // similarity transform with a random (well-conditioned) matrix.
+        let mut rng = Rng::seeded(99);
+        for size in [2usize, 5, 9, 16, 40] {
+            let mut expected = Vec::new();
+            let mut d = Matrix::zeros(size, size);
+            let mut i = 0;
+            while i < size {
+                if i + 1 < size && rng.unit() < 0.5 {
+                    let (re, im) = (rng.range(-1.5, 1.5), rng.range(0.01, 1.0));
+                    d[(i, i)] = re;
+                    d[(i, i + 1)] = im;
+                    d[(i + 1, i)] = -im;
+                    d[(i + 1, i + 1)] = re;
+                    expected.push(re.hypot(im));
+                    expected.push(re.hypot(im));
+                    i += 2;
+                } else {
+                    let re = rng.range(-1.5, 1.5);
+                    d[(i, i)] = re;
+                    expected.push(re.abs());
+                    i += 1;
+                }
+            }
+            // S = I + small random.
+            let mut s = Matrix::identity(size, size);
+            for v in s.iter_mut() {
+                *v += rng.range(-0.3, 0.3) / size as f64;
+            }
+            let inv = s.clone().try_inverse().expect("well conditioned");
+            let a = &s * &d * &inv;
+            let mut got: Vec<f64> = eigenvalues(&a).iter().map(|e| e.norm()).collect();
+            got.sort_by(f64::total_cmp);
+            expected.sort_by(f64::total_cmp);
+            for (g, e) in got.iter().zip(&expected) {
+                assert!((g - e).abs() < 1e-9, "size {size}: {got:?} vs {expected:?}");
+            }
+            assert!((spectral_radius(&a) - expected[size - 1]).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn a_single_spring_has_the_closed_form_spectral_radius() {
+        for (ck, cd) in [
+            (0.3, 0.3),
+            (1.0, 1.0),
+            (1.2, 1.2),
+            (0.01, 0.0),
+            (2.0, 0.5),
+            (0.5, 1.5),
+        ] {
+            let top = Topology::rope(2, true, Masses::Equal);
+            let m = top.step_matrix(&[ck], &[cd], Order::GaussSeidel);
+            let radius = crate::reference::spectral_radius(ck, cd);
+            assert!(
+                (growth_rate(&m) + 1.0 - radius).abs() < 1e-9,
+                "({ck}, {cd})"
+            );
+        }
     }
 }

@@ -1,10 +1,11 @@
 //! Independent f64 reference model of the springs in the seed article
 //! ("Towards a simpler, stiffer, and more stable spring").
 //!
-//! This module is test support only. It is written straight from the article's
-//! equations (the equation number is given in a comment on every line that
-//! implements one) and from textbook mathematics, and deliberately shares no
-//! code with the library. Test files include it with `mod reference;`.
+//! It is written straight from the article's equations (the equation number is
+//! given in a comment on every line that implements one) and from textbook
+//! mathematics, and deliberately shares no code with the library. Its self-tests
+//! are `lab/tests/reference_selftest.rs` and
+//! `lab/tests/reference_network_selftest.rs`.
 //!
 //! Conventions:
 //! - `x` is a displacement (extension) from rest, `v` a velocity, `m` a mass,
@@ -13,7 +14,6 @@
 //! - A pinned body has mass `f64::INFINITY`; it receives no velocity change.
 //! - Eq. 27 and 28 are used in their corrected form: the printed damping term
 //!   `-C_d·v` lacks the mass; the impulse is `-(m/dt)·C_k·x - m·C_d·v`.
-#![allow(dead_code)]
 
 /// Particle and angular-spring networks (distance springs in 1-3 D, angular
 /// springs; Gauss-Seidel and Jacobi steppers; invariants; scene builders).

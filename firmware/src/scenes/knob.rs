@@ -1,9 +1,8 @@
 //! The `knob` scene: a knob of 20 detents over three quarters of a turn, with endstops,
 //! at 1 kHz. Shared by `examples/knob.rs` (host and firmware) and by `tests/golden.rs`,
 //! which plays its scripted encoder sweep on the `f64` knob and writes
-//! `examples/golden/knob.rs`. Change it, then regenerate the golden values:
+//! `firmware/src/golden/knob.rs`. Change it, then regenerate the golden values:
 //! `STIFFSPRING_BLESS=1 cargo test --test golden`.
-#![allow(dead_code)]
 
 use stiffspring::KnobConfig;
 use stiffspring::knob::Latency;

@@ -5,7 +5,8 @@
 //! so that a wrong reference is caught before it is used to judge the
 //! library. They use nothing but std and the reference module.
 
-mod reference;
+use lab::reference;
+use lab::rng::Rng;
 
 use reference::*;
 use std::f64::consts::{PI, TAU};
@@ -13,43 +14,6 @@ use std::f64::consts::{PI, TAU};
 // ---------------------------------------------------------------------------
 // Helpers
 // ---------------------------------------------------------------------------
-
-/// Small deterministic LCG (Knuth's MMIX constants) for reproducible inputs.
-struct Lcg(u64);
-
-impl Lcg {
-    fn new(seed: u64) -> Self {
-        Lcg(seed)
-    }
-
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        self.0
-    }
-
-    /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [lo, hi).
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// Log-uniform in [lo, hi), both > 0.
-    fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        self.range(lo.ln(), hi.ln()).exp()
-    }
-
-    /// Uniform in [-a, a).
-    fn sym(&mut self, a: f64) -> f64 {
-        self.range(-a, a)
-    }
-}
 
 /// Damping ratios covering all regimes, including near-critical ones.
 const ZETAS: [f64; 14] = [
@@ -109,7 +73,7 @@ fn limits_and_reduced_mass() {
     assert_eq!(reduced_mass(f64::INFINITY, 0.3), 0.3);
     assert_eq!(reduced_mass(f64::INFINITY, f64::INFINITY), f64::INFINITY);
 
-    let mut rng = Lcg::new(1);
+    let mut rng = Rng::seeded(1);
     for _ in 0..1000 {
         let (m1, m2) = (rng.log_range(1e-3, 1e3), rng.log_range(1e-3, 1e3));
         let r = reduced_mass(m1, m2);
@@ -131,7 +95,7 @@ fn limits_and_reduced_mass() {
 
 #[test]
 fn analytic_meets_initial_conditions_in_every_regime() {
-    let mut rng = Lcg::new(2);
+    let mut rng = Rng::seeded(2);
     for &zeta in ZETAS.iter().chain([30.0, 1e4].iter()) {
         for _ in 0..50 {
             let omega = rng.log_range(0.1, 1e3);
@@ -153,7 +117,7 @@ fn analytic_meets_initial_conditions_in_every_regime() {
 
 #[test]
 fn analytic_satisfies_the_ode_and_v_is_dx_dt() {
-    let mut rng = Lcg::new(3);
+    let mut rng = Rng::seeded(3);
     for &zeta in ZETAS.iter().chain([100.0].iter()) {
         for _ in 0..20 {
             let omega = rng.log_range(0.5, 500.0);
@@ -198,7 +162,7 @@ fn analytic_satisfies_the_ode_and_v_is_dx_dt() {
 fn analytic_is_a_flow() {
     // phi(t2, phi(t1, s)) == phi(t1 + t2, s), also with negative times; this
     // is what makes u0_from_analytic (a backward step) consistent.
-    let mut rng = Lcg::new(4);
+    let mut rng = Rng::seeded(4);
     for &zeta in &ZETAS {
         for _ in 0..50 {
             let omega = rng.log_range(0.5, 100.0);
@@ -218,7 +182,7 @@ fn analytic_is_a_flow() {
 
 #[test]
 fn analytic_is_continuous_across_critical_damping() {
-    let mut rng = Lcg::new(5);
+    let mut rng = Rng::seeded(5);
     for _ in 0..200 {
         let omega = rng.log_range(0.1, 1e3);
         let (x0, v0) = (rng.sym(1.0), rng.sym(1.0) * omega);
@@ -240,7 +204,7 @@ fn analytic_is_continuous_across_critical_damping() {
 fn analytic_is_continuous_across_the_overdamped_form_switch() {
     // The overdamped branch switches form at q = √(ζ²−1) = 0.5.
     let z_switch = 1.25_f64.sqrt();
-    let mut rng = Lcg::new(23);
+    let mut rng = Rng::seeded(23);
     for _ in 0..200 {
         let omega = rng.log_range(0.1, 1e3);
         let (x0, v0) = (rng.sym(1.0), rng.sym(1.0) * omega);
@@ -255,7 +219,7 @@ fn analytic_is_continuous_across_the_overdamped_form_switch() {
 
 #[test]
 fn analytic_matches_fine_rk4() {
-    let mut rng = Lcg::new(6);
+    let mut rng = Rng::seeded(6);
     for &zeta in ZETAS.iter().chain([100.0].iter()) {
         let omega = rng.log_range(0.5, 50.0);
         let (x0, v0) = (rng.sym(1.0), rng.sym(1.0) * omega);
@@ -301,7 +265,7 @@ fn analytic_large_zeta_is_sane() {
 
 #[test]
 fn analytic_undamped_conserves_energy() {
-    let mut rng = Lcg::new(7);
+    let mut rng = Rng::seeded(7);
     for _ in 0..200 {
         let omega = rng.log_range(0.1, 1e3);
         let (x0, v0) = (rng.sym(1.0), rng.sym(1.0) * omega);
@@ -317,7 +281,7 @@ fn analytic_undamped_conserves_energy() {
 
 #[test]
 fn full_coefficients_reach_rest_in_one_step_and_stop_in_two() {
-    let mut rng = Lcg::new(8);
+    let mut rng = Rng::seeded(8);
     for _ in 0..1000 {
         let m = rng.log_range(1e-3, 1e3);
         let dt = rng.log_range(1e-4, 1e-1);
@@ -346,7 +310,7 @@ fn full_coefficients_reach_rest_in_one_step_and_stop_in_two() {
 
 #[test]
 fn impulse_and_force_forms_agree_for_one_body() {
-    let mut rng = Lcg::new(9);
+    let mut rng = Rng::seeded(9);
     for _ in 0..500 {
         let m = rng.log_range(1e-3, 1e3);
         let dt = rng.log_range(1e-4, 1e-1);
@@ -366,7 +330,7 @@ fn impulse_and_force_forms_agree_for_one_body() {
 
 #[test]
 fn map_step_in_units_of_v_dt_agrees_with_impulse_step() {
-    let mut rng = Lcg::new(10);
+    let mut rng = Rng::seeded(10);
     for _ in 0..500 {
         let m = rng.log_range(1e-3, 1e3);
         let dt = rng.log_range(1e-4, 1e-1);
@@ -410,7 +374,7 @@ fn undamped_symplectic_euler_energy_is_bounded_without_drift() {
 
 #[test]
 fn naive_coefficients_are_fractions_of_the_maxima() {
-    let mut rng = Lcg::new(11);
+    let mut rng = Rng::seeded(11);
     for _ in 0..500 {
         let (k, c, m, dt) = (
             rng.log_range(1e-2, 1e4),
@@ -453,12 +417,12 @@ fn naive_coefficients_are_first_order_accurate() {
 
 #[test]
 fn exact_coefficients_identities_and_ranges() {
-    let mut rng = Lcg::new(12);
+    let mut rng = Rng::seeded(12);
     for _ in 0..2000 {
         let fdt = rng.log_range(1e-2, 0.45);
         let wdt = TAU * fdt;
         let zeta = if rng.unit() < 0.2 {
-            ZETAS[(rng.next_u64() % ZETAS.len() as u64) as usize]
+            ZETAS[rng.below(ZETAS.len())]
         } else {
             rng.log_range(1e-3, 30.0)
         };
@@ -515,7 +479,7 @@ fn exact_coefficients_identities_and_ranges() {
 
 #[test]
 fn exact_coefficients_and_u0_reproduce_analytic_samples() {
-    let mut rng = Lcg::new(13);
+    let mut rng = Rng::seeded(13);
     for &zeta in &ZETAS {
         for &fdt in &[0.01, 0.03, 0.1, 0.3] {
             for _ in 0..10 {
@@ -570,7 +534,7 @@ fn starting_with_v0_dt_instead_of_u0_is_off_the_trajectory() {
 // Two bodies
 // ---------------------------------------------------------------------------
 
-fn random_pair(rng: &mut Lcg, dt: f64) -> (Pair1, f64) {
+fn random_pair(rng: &mut Rng, dt: f64) -> (Pair1, f64) {
     let rest = rng.range(0.5, 2.0);
     let xa = rng.sym(1.0);
     let xb = xa + rest + rng.sym(0.5);
@@ -587,7 +551,7 @@ fn random_pair(rng: &mut Lcg, dt: f64) -> (Pair1, f64) {
 
 #[test]
 fn pair_conserves_momentum_and_centre_of_mass_motion() {
-    let mut rng = Lcg::new(14);
+    let mut rng = Rng::seeded(14);
     for case in 0..400 {
         let dt = rng.log_range(1e-4, 1e-1);
         let (ck, cd) = (rng.range(1e-4, 1.0), rng.range(0.0, 1.0));
@@ -619,7 +583,7 @@ fn pair_conserves_momentum_and_centre_of_mass_motion() {
 
 #[test]
 fn pair_relative_motion_is_one_body_with_reduced_mass() {
-    let mut rng = Lcg::new(15);
+    let mut rng = Rng::seeded(15);
     for case in 0..400 {
         let dt = rng.log_range(1e-4, 1e-1);
         let (ck, cd) = (rng.range(1e-4, 1.0), rng.range(0.0, 1.0));
@@ -643,7 +607,7 @@ fn pair_relative_motion_is_one_body_with_reduced_mass() {
 
 #[test]
 fn pair_full_coefficients_reach_rest_length_in_one_step() {
-    let mut rng = Lcg::new(16);
+    let mut rng = Rng::seeded(16);
     for _ in 0..400 {
         let dt = rng.log_range(1e-4, 1e-1);
         let (mut p, rest) = random_pair(&mut rng, dt);
@@ -663,7 +627,7 @@ fn pair_full_coefficients_reach_rest_length_in_one_step() {
 
 #[test]
 fn pinned_body_never_moves_and_the_free_one_is_a_particle() {
-    let mut rng = Lcg::new(17);
+    let mut rng = Rng::seeded(17);
     for case in 0..400 {
         let dt = rng.log_range(1e-4, 1e-1);
         let (ck, cd) = (rng.range(1e-2, 1.0), rng.range(0.0, 1.0));
@@ -726,7 +690,7 @@ fn pinned_body_never_moves_and_the_free_one_is_a_particle() {
 
 #[test]
 fn angular_pair_mirrors_the_linear_pair() {
-    let mut rng = Lcg::new(18);
+    let mut rng = Rng::seeded(18);
     for case in 0..200 {
         let dt = rng.log_range(1e-4, 1e-1);
         let (ck, cd) = (rng.range(1e-4, 1.0), rng.range(0.0, 1.0));
@@ -780,7 +744,7 @@ fn angular_spring_winds_up_over_many_turns() {
 
 #[test]
 fn map_matrix_is_the_matrix_of_map_step() {
-    let mut rng = Lcg::new(19);
+    let mut rng = Rng::seeded(19);
     for _ in 0..1000 {
         let (ck, cd) = (rng.range(-1.0, 5.0), rng.range(-1.0, 3.0));
         let m = map_matrix(ck, cd);
@@ -803,7 +767,7 @@ fn map_matrix_is_the_matrix_of_map_step() {
 fn spectral_radius_follows_the_jury_region() {
     // Stable exactly when C_k > 0, 0 < C_d < 2, C_k + 2·C_d < 4; sample points
     // at least 1e-4 from the boundary.
-    let mut rng = Lcg::new(20);
+    let mut rng = Rng::seeded(20);
     let (mut inside, mut outside) = (0, 0);
     for _ in 0..20_000 {
         let (ck, cd) = (rng.range(-1.0, 5.0), rng.range(-1.0, 3.0));
@@ -835,7 +799,7 @@ fn spectral_radius_follows_the_jury_region() {
 
 #[test]
 fn spectral_radius_predicts_growth_of_map_step() {
-    let mut rng = Lcg::new(21);
+    let mut rng = Rng::seeded(21);
     let mut checked = 0;
     while checked < 300 {
         let (ck, cd) = (rng.range(-0.5, 4.5), rng.range(-0.5, 2.5));
@@ -870,7 +834,7 @@ fn full_coefficients_are_deadbeat() {
         }
     }
     // Any state is at (0, 0) after two steps of the map (up to rounding).
-    let mut rng = Lcg::new(24);
+    let mut rng = Rng::seeded(24);
     for _ in 0..100 {
         let (mut x, mut u) = (rng.sym(10.0), rng.sym(10.0));
         let scale = x.abs() + u.abs();
@@ -883,7 +847,7 @@ fn full_coefficients_are_deadbeat() {
 
 #[test]
 fn spectral_radius_of_exact_coefficients_is_the_pole_modulus() {
-    let mut rng = Lcg::new(22);
+    let mut rng = Rng::seeded(22);
     for &zeta in &ZETAS {
         for _ in 0..50 {
             let wdt = TAU * rng.log_range(1e-2, 0.3);

@@ -1,8 +1,8 @@
 //! The simulated plant of the knob tests: a rotor of inertia `I` with optional viscous
 //! friction, driven by a zero-order-hold motor torque (with a computational delay of a
 //! fraction of a period) and a hand, integrated exactly over fine sub-steps, read by a
-//! 14-bit encoder. Written here, in `f64`, independently of the library.
-#![allow(dead_code)]
+//! 14-bit encoder. Written here, in `f64`, independently of the library; [`pd`] has the
+//! SmartKnob-style PD detents the knob is compared with.
 
 pub mod pd;
 
