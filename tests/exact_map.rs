@@ -2,7 +2,7 @@
 //!
 //! A value tuned with `Tuning::from_frequency`, started with `set_target` and `fling`,
 //! is stepped 10 000 times and compared at every sample with the analytic solution of
-//! `ẍ + 2ζω·ẋ + ω²·x = 0` from the independent reference model (`tests/reference`).
+//! `ẍ + 2ζω·ẋ + ω²·x = 0` from the independent reference model (`lab::reference`).
 //! Error = max |x_n − x(n·dt)| / amplitude, amplitude = max(|x0|, max |x(t)|).
 //!
 //! The grid: f·dt from 1e−4 to 0.4, ζ from 0 to 10, two starts (released from rest, and

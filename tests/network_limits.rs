@@ -7,11 +7,11 @@
 //! pinned ends, both steppers and two initial deformations, in two independent ways:
 //!
 //! - **Linearised.** The step of a network about its rest state is a matrix (written out
-//!   in `tests/linear/mod.rs` from the position-level impulse, not from the library);
+//!   in `lab/src/linear.rs` from the position-level impulse, not from the library);
 //!   its spectral radius, from a dense eigenvalue solver, says whether small motions
 //!   grow. Bisection on `C` gives the limit on the diagonal `C_k = C_d`, and on the
 //!   whole square `[0, L]²` (every ratio `C_d/C_k` sampled on its outer edges).
-//! - **Nonlinear.** The independent f64 reference network of `tests/reference/network.rs`
+//! - **Nonlinear.** The independent f64 reference network of `lab/src/reference/network.rs`
 //!   (the article's equations; the library's scene refuses coefficients above its own
 //!   limit, so it cannot be driven past it), with the library's spring order, started
 //!   from rest with every free particle displaced by up to 10 % or 50 % of the shortest

@@ -1,5 +1,5 @@
 //! The network [`Scene`] against the independent f64 reference networks of
-//! `tests/reference/network.rs` (written straight from the article), in every backend, with
+//! `lab/src/reference/network.rs` (written straight from the article), in every backend, with
 //! both steppers and every length kernel that applies.
 //!
 //! - **Units.** The library stores step velocities `u = v·dt`; the reference stores `v`.
@@ -411,7 +411,7 @@ fn spinning_pair_matches_the_reference() {
 // ---------------------------------------------------------------------------
 
 /// The discrete steady orbit of a spinning pair under `C_k = C_d = 1` (derived in
-/// `tests/reference_network_selftest.rs`): the separation `r` turns by `φ` per step,
+/// `lab/tests/reference_network_selftest.rs`): the separation `r` turns by `φ` per step,
 /// with `r = L/cos φ` and `L²·sin φ/cos² φ = d0²·ω·dt` (angular momentum). Returns
 /// `(r, φ)`.
 fn steady_orbit(rest: f64, d0: f64, omega: f64, dt: f64) -> (f64, f64) {

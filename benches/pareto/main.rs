@@ -28,7 +28,6 @@ use lab::measure::{self, Candidate, Plan};
 use lab::pareto::ValueScene;
 use lab::plot::{Grid, Plot, Series};
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Duration;
 

@@ -28,10 +28,8 @@
 //! The scenes, the peers and the baselines are in `lab::pareto`; this file adds the
 //! library's runner.
 
-use lab::pareto::{Entry, Runner, ValueScene, entry, peer_entries};
+use lab::pareto::{Entry, FREQUENCY, Runner, TARGET, ValueScene, entry, peer_entries};
 use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
-
-pub use lab::pareto::{FLING, FREQUENCY, TARGET};
 
 /// Every implementation on `scene`, in the order of the table: the library in each
 /// backend, then the peers and the baselines.

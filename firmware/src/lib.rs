@@ -99,6 +99,12 @@ pub struct Tally {
     pub samples: usize,
 }
 
+impl Default for Tally {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl Tally {
     /// An empty tally.
     pub const fn new() -> Self {

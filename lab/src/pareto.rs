@@ -205,32 +205,23 @@ pub fn entry<R: Runner + 'static>(
 /// Every peer crate and textbook baseline on `scene`, in the order of the table (the
 /// caller puts the library's own entries first).
 pub fn peer_entries(scene: &ValueScene) -> Vec<Entry> {
-    let mut out = Vec::new();
-    out.push(entry(
-        "animato-spring/semi-implicit-euler",
-        "f32",
-        scene,
-        Animato::new(scene, false),
-    ));
-    out.push(entry(
-        "animato-spring/rk4",
-        "f32",
-        scene,
-        Animato::new(scene, true),
-    ));
-    out.push(entry(
-        "damped-springs",
-        "f64",
-        scene,
-        Damped::<f64>::new(scene),
-    ));
-    out.push(entry(
-        "damped-springs",
-        "f32",
-        scene,
-        Damped::<f32>::new(scene),
-    ));
-    out.push(entry("spring_damper", "f32", scene, Holden::new(scene)));
+    let mut out = vec![
+        entry(
+            "animato-spring/semi-implicit-euler",
+            "f32",
+            scene,
+            Animato::new(scene, false),
+        ),
+        entry(
+            "animato-spring/rk4",
+            "f32",
+            scene,
+            Animato::new(scene, true),
+        ),
+        entry("damped-springs", "f64", scene, Damped::<f64>::new(scene)),
+        entry("damped-springs", "f32", scene, Damped::<f32>::new(scene)),
+        entry("spring_damper", "f32", scene, Holden::new(scene)),
+    ];
     fn baselines<F: Real>(out: &mut Vec<Entry>, scene: &ValueScene) {
         out.push(entry(
             "baseline/explicit-euler",

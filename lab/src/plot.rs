@@ -290,13 +290,16 @@ impl Plot {
                 Style::Markers => {
                     let labels = &s.labels;
                     let font = (FONT, 13).into_font().color(&color);
-                    chart.draw_series(s.points.iter().enumerate().filter_map(|(k, &p)| {
-                        self.drawable(p).then(|| {
-                            let text = labels.get(k).cloned().unwrap_or_default();
-                            EmptyElement::at(p)
-                                + Circle::new((0, 0), 3, color.filled())
-                                + Text::new(text, (5, -10), font.clone())
-                        })
+                    let dots = s
+                        .points
+                        .iter()
+                        .enumerate()
+                        .filter(|&(_, &p)| self.drawable(p));
+                    chart.draw_series(dots.map(|(k, &p)| {
+                        let text = labels.get(k).cloned().unwrap_or_default();
+                        EmptyElement::at(p)
+                            + Circle::new((0, 0), 3, color.filled())
+                            + Text::new(text, (5, -10), font.clone())
                     }))?
                 }
             };

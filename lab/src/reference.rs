@@ -404,6 +404,9 @@ pub struct Complex {
     pub im: f64,
 }
 
+// Written as plain methods, the way the pole computation reads; the operators are not
+// worth a trait implementation each.
+#[allow(clippy::should_implement_trait)]
 impl Complex {
     pub const ONE: Complex = Complex { re: 1.0, im: 0.0 };
 

@@ -1,6 +1,6 @@
 //! Self-tests of the network part of the independent reference model
-//! (`tests/reference/network.rs`): against the two-body reference of
-//! `tests/reference/mod.rs`, conservation laws, closed-form discrete
+//! (`lab/src/reference/network.rs`): against the two-body reference of
+//! `lab/src/reference.rs`, conservation laws, closed-form discrete
 //! solutions (free fall, the hanging rope's fixed point, the spinning pair's
 //! steady orbit) and the article's qualitative claims. Only std and the
 //! reference module are used.

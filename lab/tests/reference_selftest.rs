@@ -1,4 +1,4 @@
-//! Self-tests of the independent reference model in `tests/reference/`.
+//! Self-tests of the independent reference model in `lab/src/reference.rs`.
 //!
 //! These check the reference against itself and against mathematics (ODE
 //! residuals, an RK4 integration, algebraic identities, conservation laws),

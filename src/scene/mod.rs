@@ -34,9 +34,9 @@
 //! The two bodies of a spring get their velocity changes `−w_a·Δ` and `+w_b·Δ` rounded
 //! separately and symmetrically, so two **equal masses** conserve momentum exactly, to
 //! the bit, in every backend. With unequal masses the roundings no longer cancel:
-//! measured on a free 4×4 jelly with masses 0.25 to 4 over 10 000 steps, the drift is 0.2
-//! LSB·kg per step, which is 16–19 % of `Σ m|v|` in `I16F16` but 2.4e−6 in `I32F32` and
-//! ~1e−6 in `f32`. (Deriving the lighter body's change from the heavier's would cut it
+//! measured on a free 4×4 jelly with masses 0.25 to 4 over 10 000 steps, the drift is
+//! 0.15–0.24 LSB·kg per step, which is 22–23 % of `Σ m|v|` in `I16F16` but 3e−6 to 5e−6
+//! in `I32F32` and ~1e−6 in `f32`. (Deriving the lighter body's change from the heavier's would cut it
 //! about 4×, but needs the mass ratio in the position format, which fails for pinned ends
 //! and ratios beyond the format's range; use `I32F32` where momentum matters.)
 //!

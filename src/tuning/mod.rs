@@ -74,8 +74,9 @@ impl Tuning {
     /// The article's stiffest spring, `C_k = C_d = 1` (eq. 12).
     ///
     /// The position reaches rest in one step for any offset, velocity, mass and `dt`, but
-    /// the step velocity is then `−x₀` (the erratum in DESIGN.md): the body is fully at
-    /// rest only after the **second** step.
+    /// the step velocity is then `−x₀` (the article calls the body at rest after one step;
+    /// its velocity, `−x₀/dt`, is not zero): it is fully at rest only after the **second**
+    /// step.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};

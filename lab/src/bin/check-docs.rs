@@ -2,8 +2,8 @@
 //! reach outside the repository.
 //!
 //! It reads the Markdown files (`*.md` at the root and under `docs/`, `lab/`,
-//! `firmware/`) and the doc comments (`///`, `//!`) of `src/`, `lab/src` and
-//! `firmware/src`, and fails when
+//! `firmware/`) and the doc comments (`///`, `//!`) of every Rust file (the library's
+//! rustdoc, and the docs of the tests, examples, benches and instruments), and fails when
 //!
 //! 1. a cited **file** does not exist: a path that starts with a top-level entry of the
 //!    repository (`src/…`, `tests/…`, `scripts/…`, `.ci/…`, …; `*` matches within a
@@ -18,7 +18,7 @@
 //!    that is a test function) does not exist; or it is `#[ignore]`d while the text
 //!    around the citation does not say "ignore"; or the text calls it ignored while it
 //!    runs; or a `cargo test` command selects only ignored tests without `--ignored` or
-//!    `--include-ignored`;
+//!    `--include-ignored`, or passes `--ignored` where none of the selected tests is;
 //! 4. a doc **refers outside the repository**: any text file that Git tracks naming
 //!    the design brief `DESIGN.md` or the absolute prefixes `/work/` or `/home/`, or a
 //!    doc (Markdown, doc comments, and the comments of Rust, TOML and shell files) with
@@ -70,6 +70,9 @@ fn repo_root() -> Option<PathBuf> {
         .success()
         .then(|| PathBuf::from(String::from_utf8_lossy(&out.stdout).trim()))
 }
+
+/// This file, which names what it looks for.
+const SELF: &str = "lab/src/bin/check-docs.rs";
 
 /// The words this tool looks for, spelled so that its own source does not contain them.
 fn forbidden_words() -> [String; 3] {
@@ -133,10 +136,10 @@ impl Repo {
                     || p.starts_with("docs/")
                     || p.starts_with("lab/")
                     || p.starts_with("firmware/"));
-            let rustdoc = p.ends_with(".rs")
-                && (p.starts_with("src/")
-                    || p.starts_with("lab/src/")
-                    || p.starts_with("firmware/src/"));
+            // The doc comments of every Rust file: the library's rustdoc, and the module
+            // docs of the tests, examples and benches, which say what they measure. The
+            // checker's own doc spells out the patterns it looks for.
+            let rustdoc = p.ends_with(".rs") && p != SELF;
             if markdown {
                 let lines = read(p)
                     .lines()
@@ -238,7 +241,8 @@ impl Repo {
         let mut counts = Counts::default();
         for doc in &self.docs {
             let mut in_code = false;
-            for (i, (n, line)) in doc.lines.iter().enumerate() {
+            let lines = logical_lines(&doc.lines);
+            for (i, (n, line)) in lines.iter().enumerate() {
                 let at = format!("{}:{n}", doc.path);
                 let fence = line.trim_start().starts_with("```");
                 if fence {
@@ -246,7 +250,7 @@ impl Repo {
                     continue;
                 }
                 // The text around a citation: this line and its neighbours.
-                let context: String = doc.lines[i.saturating_sub(2)..(i + 3).min(doc.lines.len())]
+                let context: String = lines[i.saturating_sub(2)..(i + 3).min(lines.len())]
                     .iter()
                     .map(|(_, l)| l.as_str())
                     .collect::<Vec<_>>()
@@ -301,7 +305,9 @@ impl Repo {
                             "{at}: cites test `{name}`, which is #[ignore]d, without saying so"
                         ));
                     }
-                    let called_ignored = calls_ignored(line, &name);
+                    // "ignored" may end the previous line, with the name on this one.
+                    let previous = if i > 0 { lines[i - 1].1.as_str() } else { "" };
+                    let called_ignored = calls_ignored(&format!("{previous} {line}"), &name);
                     if !ignored && called_ignored {
                         findings.push(format!(
                             "{at}: calls test `{name}` ignored, but it runs in `cargo test`"
@@ -336,7 +342,6 @@ impl Repo {
         self.tracked
             .iter()
             .any(|t| t == path || t.starts_with(&format!("{path}/")))
-            || self.root.join(path).exists() && !path.starts_with("target")
     }
 
     /// A link target relative to the document `from`, as a repository path; `None` when
@@ -405,6 +410,9 @@ impl Repo {
                 errors.push(format!("`{flag}` without a value"));
                 continue;
             };
+            if placeholder(value) {
+                continue;
+            }
             let known = match flag {
                 "--example" => self.examples.contains(value),
                 "--bench" => self.benches.contains(value),
@@ -464,6 +472,10 @@ impl Repo {
             {
                 errors.push("selects only ignored tests, without `--ignored`".into());
             }
+            let only_ignored = rest.contains(&"--ignored");
+            if only_ignored && !selected.iter().any(|t| t.ignored) {
+                errors.push("`--ignored` runs no test: none of those selected is ignored".into());
+            }
         }
         Some(errors)
     }
@@ -473,7 +485,7 @@ impl Repo {
         let mut findings = Vec::new();
         let words = forbidden_words();
         for p in &self.tracked {
-            if p == "lab/src/bin/check-docs.rs" {
+            if p == SELF {
                 continue;
             }
             let Ok(text) = fs::read_to_string(self.root.join(p)) else {
@@ -589,6 +601,33 @@ fn test_fns(source: &str) -> Vec<(String, bool)> {
     out
 }
 
+/// The lines of a doc with an inline code span that continues on the next line joined
+/// to it (a wrapped `` `cargo test --test\n name` ``), numbered by their first line. Code
+/// blocks are left as they are.
+fn logical_lines(lines: &[(usize, String)]) -> Vec<(usize, String)> {
+    let mut out: Vec<(usize, String)> = Vec::new();
+    let mut open = false;
+    let mut in_code = false;
+    for (n, line) in lines {
+        let fence = line.trim_start().starts_with("```");
+        if open && !fence && !in_code {
+            let last = out.last_mut().expect("an open span has a line");
+            last.1.push(' ');
+            last.1.push_str(line.trim_start());
+        } else {
+            out.push((*n, line.clone()));
+        }
+        if fence {
+            in_code = !in_code;
+            open = false;
+        } else if !in_code {
+            let ticks = out.last().map_or(0, |(_, l)| l.matches('`').count());
+            open = ticks % 2 == 1;
+        }
+    }
+    out
+}
+
 /// The pieces of `line` between backticks.
 fn backticked(line: &str) -> Vec<String> {
     line.split('`')
@@ -620,7 +659,7 @@ fn cited_paths(line: &str, top: &BTreeSet<String>) -> Vec<String> {
             _ => token,
         };
         let token = token.trim_end_matches(['.', ':']);
-        if token.is_empty() || token.contains("://") || token.contains('{') {
+        if token.is_empty() || token.contains("://") || placeholder(token) {
             continue;
         }
         let Some(first) = token.split('/').next() else {
@@ -643,7 +682,25 @@ fn cited_paths(line: &str, top: &BTreeSet<String>) -> Vec<String> {
     out
 }
 
-/// The relative targets of the Markdown links of `line` (`[text](target)`).
+/// True for a template rather than a name: `NAME`, `…`, `<file>`, `{a,b}`, `$VAR`.
+fn placeholder(token: &str) -> bool {
+    const NAMES: [&str; 6] = [
+        "README",
+        "CHANGELOG",
+        "STABILITY",
+        "BENCHMARKS",
+        "BAD",
+        "INPUT",
+    ];
+    token.contains(['…', '<', '{', '$'])
+        || token.split(['/', '.', '-', '_']).any(|w| {
+            w.len() >= 2 && w.chars().all(|c| c.is_ascii_uppercase()) && !NAMES.contains(&w)
+        })
+}
+
+/// The relative targets of the Markdown links of `line` (`[text](target)`) that name
+/// files: not web addresses, not anchors, not rustdoc's intra-doc links
+/// (`crate::Item`, `Self::f`, `super`).
 fn markdown_links(line: &str) -> Vec<String> {
     let mut out = Vec::new();
     let mut rest = line;
@@ -651,7 +708,9 @@ fn markdown_links(line: &str) -> Vec<String> {
         let after = &rest[i + 2..];
         let Some(end) = after.find(')') else { break };
         let target = after[..end].split('#').next().unwrap_or("").trim();
-        if !target.is_empty() && !target.contains("://") && !target.starts_with("mailto:") {
+        let intra_doc = target.contains("::") || !target.contains(['/', '.']);
+        let web = target.contains("://") || target.starts_with("mailto:");
+        if !target.is_empty() && !web && !intra_doc {
             out.push(target.to_string());
         }
         rest = &after[end..];
@@ -752,12 +811,11 @@ fn toml_value(toml: &str, section: &str, key: &str) -> Option<String> {
         let t = line.trim();
         if t.starts_with('[') {
             here = t == format!("[{section}]");
-        } else if here {
-            if let Some((k, v)) = t.split_once('=') {
-                if k.trim() == key {
-                    return Some(v.trim().trim_matches('"').to_string());
-                }
-            }
+        } else if here
+            && let Some((k, v)) = t.split_once('=')
+            && k.trim() == key
+        {
+            return Some(v.trim().trim_matches('"').to_string());
         }
     }
     None
@@ -771,10 +829,11 @@ fn toml_keys(toml: &str, section: &str) -> BTreeSet<String> {
         let t = line.trim();
         if t.starts_with('[') {
             here = t == format!("[{section}]");
-        } else if here && !t.starts_with('#') {
-            if let Some((k, _)) = t.split_once('=') {
-                out.insert(k.trim().to_string());
-            }
+        } else if here
+            && !t.starts_with('#')
+            && let Some((k, _)) = t.split_once('=')
+        {
+            out.insert(k.trim().to_string());
         }
     }
     out
@@ -802,7 +861,7 @@ mod tests {
             cited_paths("`src/kernel.rs::respond`.", &top()),
             ["src/kernel.rs"]
         );
-        assert_eq!(cited_paths("the DESIGN.md brief", &top()), ["DESIGN.md"]);
+        assert_eq!(cited_paths("the CHANGELOG.md", &top()), ["CHANGELOG.md"]);
     }
 
     #[test]
@@ -836,6 +895,18 @@ mod tests {
     }
 
     #[test]
+    fn wrapped_code_spans_are_joined() {
+        let lines: Vec<(usize, String)> = ["a `cargo test --test", "  x` b", "```", "`c", "```"]
+            .iter()
+            .enumerate()
+            .map(|(i, l)| (i + 1, l.to_string()))
+            .collect();
+        let joined = logical_lines(&lines);
+        assert_eq!(joined[0], (1, "a `cargo test --test x` b".to_string()));
+        assert_eq!(joined.len(), 4);
+    }
+
+    #[test]
     fn globs_and_normalisation() {
         assert!(glob("target/cost/*.csv", "target/cost/m0.csv"));
         assert!(glob("tests/knob_*", "tests/knob_fixed.rs"));
@@ -846,8 +917,9 @@ mod tests {
         );
         assert_eq!(normalise(Path::new("../shared/x.md")), None);
         assert_eq!(
-            markdown_links("[a](docs/x.md#y) and [b](https://e.org)"),
+            markdown_links("[a](docs/x.md#y), [b](https://e.org), [c](crate::X), [d](self)"),
             ["docs/x.md"]
         );
+        assert!(placeholder("examples/NAME.rs") && placeholder("…") && !placeholder("README.md"));
     }
 }
