@@ -5,7 +5,7 @@
 //!
 //! | module | what it is |
 //! |---|---|
-//! | [`reference`] | the independent f64 models of the seed article's springs and networks, written from its equations |
+//! | [`reference`](mod@reference) | the independent f64 models of the seed article's springs and networks, written from its equations |
 //! | [`linear`] | the linearised step matrix of a network and its eigenvalues (nalgebra) |
 //! | [`rng`] | a seeded, portable random generator (rand's xoshiro256++) for reproducible inputs |
 //! | [`knob`] | a simulated rotor (exact zero-order hold, encoder) and SmartKnob-style PD detents |

@@ -43,7 +43,7 @@ pub type Matrix = DMatrix<f64>;
 /// converges on every matrix the tests build; a deflated entry that small moves a
 /// well-conditioned eigenvalue by as much, far below the tests' tolerances (1e−9, and
 /// [`NEUTRAL`]). The looser ones are a fallback.
-const DEFLATION: [f64; 3] = [1e-14, 1e-12, 1e-10];
+pub const DEFLATION: [f64; 3] = [1e-14, 1e-12, 1e-10];
 
 /// The eigenvalues of a real square matrix, complex ones in conjugate pairs.
 ///

@@ -20,7 +20,6 @@
 //! font is read when drawing, so nothing here needs fontconfig or freetype.
 
 use plotters::coord::Shift;
-use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -210,118 +209,138 @@ impl Plot {
         x.is_finite() && y.is_finite() && (!self.x_log || x > 0.0) && (!self.y_log || y > 0.0)
     }
 
-    /// The x and y ranges: the data's (and the reference lines'), widened a little on a
-    /// linear axis and out to whole decades on a log one.
-    fn ranges(&self) -> ((f64, f64), (f64, f64)) {
-        let points = self
-            .series
+    /// A point in the chart's coordinates: a log axis is drawn as `log₁₀` of the value,
+    /// on a linear scale, so that its ticks can be whole decades.
+    fn to_chart(&self, (x, y): (f64, f64)) -> (f64, f64) {
+        (
+            if self.x_log { x.log10() } else { x },
+            if self.y_log { y.log10() } else { y },
+        )
+    }
+
+    /// The drawable points of `series`, in chart coordinates, with their indices.
+    fn chart_points<'a>(
+        &'a self,
+        series: &'a Series,
+    ) -> impl Iterator<Item = (usize, (f64, f64))> + 'a {
+        series
+            .points
             .iter()
-            .flat_map(|s| s.points.iter().copied())
-            .filter(|&p| self.drawable(p));
+            .enumerate()
+            .filter(|&(_, &p)| self.drawable(p))
+            .map(|(k, &p)| (k, self.to_chart(p)))
+    }
+
+    /// The x and y ranges in chart coordinates: the data's (and the reference lines'),
+    /// widened a little on a linear axis and out to whole decades on a log one.
+    fn ranges(&self) -> ((f64, f64), (f64, f64)) {
         let (mut x, mut y) = (Span::default(), Span::default());
-        for (px, py) in points {
-            x.add(px);
-            y.add(py);
+        for s in &self.series {
+            for (_, (px, py)) in self.chart_points(s) {
+                x.add(px);
+                y.add(py);
+            }
         }
         for &(h, _) in &self.hlines {
-            if self.drawable((if self.x_log { 1.0 } else { 0.0 }, h)) {
-                y.add(h);
+            if h.is_finite() && (!self.y_log || h > 0.0) {
+                y.add(self.to_chart((1.0, h)).1);
             }
         }
         let x = x.axis(self.x_log);
-        let y = self.y_range.unwrap_or_else(|| y.axis(self.y_log));
+        let y = match self.y_range {
+            Some((lo, hi)) if self.y_log => (lo.log10(), hi.log10()),
+            Some(r) => r,
+            None => y.axis(self.y_log),
+        };
         (x, y)
     }
 
     fn draw(&self, area: &DrawingArea<SVGBackend<'_>, Shift>) -> DrawResult {
         let ((x0, x1), (y0, y1)) = self.ranges();
-        match (self.x_log, self.y_log) {
-            (false, false) => self.chart(area, x0..x1, y0..y1),
-            (true, false) => self.chart(area, (x0..x1).log_scale(), y0..y1),
-            (false, true) => self.chart(area, x0..x1, (y0..y1).log_scale()),
-            (true, true) => self.chart(area, (x0..x1).log_scale(), (y0..y1).log_scale()),
-        }
-    }
-
-    fn chart<X, Y>(&self, area: &DrawingArea<SVGBackend<'_>, Shift>, x: X, y: Y) -> DrawResult
-    where
-        X: AsRangedCoord<Value = f64>,
-        Y: AsRangedCoord<Value = f64>,
-        X::CoordDescType: ValueFormatter<f64>,
-        Y::CoordDescType: ValueFormatter<f64>,
-    {
+        // Whole decades on a log axis: one label a decade up to ten, else a nice step of
+        // decades (plotters picks 1-2-5 steps, whole numbers at these counts).
+        let labels = |log: bool, lo: f64, hi: f64| {
+            if log && hi - lo <= 10.0 {
+                (hi - lo).round() as usize + 1
+            } else {
+                6
+            }
+        };
+        let value = |log: bool, v: f64, span: f64| {
+            if log {
+                fmt_num(10f64.powf(v))
+            } else {
+                fmt_num(snap(v, span))
+            }
+        };
         let mut chart = ChartBuilder::on(area)
             .caption(&self.title, (FONT, 19).into_font().color(&TEXT))
             .margin(10)
             .x_label_area_size(if self.x_label.is_empty() { 24 } else { 40 })
             .y_label_area_size(if self.y_label.is_empty() { 48 } else { 64 })
-            .build_cartesian_2d(x, y)?;
+            .build_cartesian_2d(x0..x1, y0..y1)?;
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
             .axis_desc_style((FONT, 16).into_font().color(&TEXT))
             .label_style((FONT, 14).into_font().color(&TEXT))
-            .x_labels(6)
-            .y_labels(6)
-            .x_label_formatter(&|v| fmt_num(*v))
-            .y_label_formatter(&|v| fmt_num(*v))
+            .x_labels(labels(self.x_log, x0, x1))
+            .y_labels(labels(self.y_log, y0, y1))
+            .x_label_formatter(&|v| value(self.x_log, *v, x1 - x0))
+            .y_label_formatter(&|v| value(self.y_log, *v, y1 - y0))
             .bold_line_style(GRID)
             .light_line_style(WHITE)
             .draw()?;
-        let (x_span, _) = self.ranges();
         for (i, s) in self.series.iter().enumerate() {
             let color = PALETTE[i % PALETTE.len()];
-            let points: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .copied()
-                .filter(|&p| self.drawable(p))
-                .collect();
-            let legend = match s.style {
+            let points: Vec<(f64, f64)> = self.chart_points(s).map(|(_, p)| p).collect();
+            let name = s.name.as_str();
+            match s.style {
                 Style::Line => {
                     let style = color.stroke_width(2);
-                    if s.dashed {
+                    let drawn = if s.dashed {
                         chart.draw_series(DashedLineSeries::new(points, 6, 4, style))?
                     } else {
                         chart.draw_series(LineSeries::new(points, style))?
-                    }
+                    };
+                    // A dashed series shows one dash in the legend.
+                    let length = if s.dashed { 7 } else { 18 };
+                    drawn.label(name).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + length, y)], color.stroke_width(2))
+                    });
                 }
                 Style::Markers => {
                     let labels = &s.labels;
                     let font = (FONT, 13).into_font().color(&color);
-                    let dots = s
-                        .points
-                        .iter()
-                        .enumerate()
-                        .filter(|&(_, &p)| self.drawable(p));
-                    chart.draw_series(dots.map(|(k, &p)| {
-                        let text = labels.get(k).cloned().unwrap_or_default();
-                        EmptyElement::at(p)
-                            + Circle::new((0, 0), 3, color.filled())
-                            + Text::new(text, (5, -10), font.clone())
-                    }))?
+                    chart
+                        .draw_series(self.chart_points(s).map(|(k, p)| {
+                            let text = labels.get(k).cloned().unwrap_or_default();
+                            EmptyElement::at(p)
+                                + Circle::new((0, 0), 3, color.filled())
+                                + Text::new(text, (5, -10), font.clone())
+                        }))?
+                        .label(name)
+                        .legend(move |(x, y)| Circle::new((x + 9, y), 3, color.filled()));
                 }
-            };
-            let dashed = s.dashed;
-            legend.label(&s.name).legend(move |(x, y)| {
-                let mut path = vec![(x, y), (x + 18, y)];
-                if dashed {
-                    path = vec![(x, y), (x + 7, y)];
-                }
-                PathElement::new(path, color.stroke_width(2))
-            });
+            }
         }
         for (h, label) in &self.hlines {
-            let line = vec![(x_span.0, *h), (x_span.1, *h)];
+            let h = self.to_chart((1.0, *h)).1;
+            let line = vec![(x0, h), (x1, h)];
             chart
                 .draw_series(DashedLineSeries::new(line, 4, 4, REFERENCE.stroke_width(1)))?
                 .label(label)
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 7, y)], REFERENCE));
         }
+        let all: Vec<(f64, f64)> = self
+            .series
+            .iter()
+            .flat_map(|s| self.chart_points(s).map(|(_, p)| p))
+            .collect();
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(emptiest_corner(&all, (x0, x1), (y0, y1)))
             .label_font((FONT, 14).into_font().color(&TEXT))
             .background_style(WHITE.mix(0.85))
             .border_style(GRID)
@@ -449,8 +468,8 @@ pub fn render_frames(
         chart
             .configure_mesh()
             .label_style((FONT, 14).into_font().color(&TEXT))
-            .x_label_formatter(&|v| fmt_num(*v))
-            .y_label_formatter(&|v| fmt_num(*v))
+            .x_label_formatter(&|v| fmt_num(snap(*v, 2.0 * hw)))
+            .y_label_formatter(&|v| fmt_num(snap(*v, 2.0 * hh)))
             .bold_line_style(GRID)
             .light_line_style(WHITE)
             .draw()?;
@@ -484,9 +503,11 @@ pub fn render_frames(
             )?;
         }
         if !times.is_empty() {
+            let all: Vec<(f64, f64)> = frames.iter().flatten().copied().collect();
+            let corner = emptiest_corner(&all, (cx - hw, cx + hw), (cy - hh, cy + hh));
             chart
                 .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
+                .position(corner)
                 .label_font((FONT, 14).into_font().color(&TEXT))
                 .background_style(WHITE.mix(0.85))
                 .border_style(GRID)
@@ -548,6 +569,36 @@ fn svg(
     out
 }
 
+/// A tick value within rounding of zero (`−2.2e−16` for a tick meant at 0), as 0.
+fn snap(v: f64, span: f64) -> f64 {
+    if v.abs() < 1e-9 * span { 0.0 } else { v }
+}
+
+/// The corner of the plotting area with the fewest points in a box of a third of its
+/// width and 40 % of its height, for the legend; upper right on a tie.
+fn emptiest_corner(points: &[(f64, f64)], x: (f64, f64), y: (f64, f64)) -> SeriesLabelPosition {
+    let (w, h) = ((x.1 - x.0) / 3.0, (y.1 - y.0) / 2.5);
+    let count = |left: bool, top: bool| {
+        points
+            .iter()
+            .filter(|p| {
+                let in_x = if left { p.0 <= x.0 + w } else { p.0 >= x.1 - w };
+                let in_y = if top { p.1 >= y.1 - h } else { p.1 <= y.0 + h };
+                in_x && in_y
+            })
+            .count()
+    };
+    [
+        (SeriesLabelPosition::UpperRight, count(false, true)),
+        (SeriesLabelPosition::UpperLeft, count(true, true)),
+        (SeriesLabelPosition::LowerRight, count(false, false)),
+        (SeriesLabelPosition::LowerLeft, count(true, false)),
+    ]
+    .into_iter()
+    .min_by_key(|(_, n)| *n)
+    .map_or(SeriesLabelPosition::UpperRight, |(corner, _)| corner)
+}
+
 fn write_file(path: &Path, svg: &str) -> std::io::Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
@@ -580,19 +631,19 @@ impl Span {
     }
 
     /// An axis range around the values: 5 % of the span added on a linear axis (a unit
-    /// around a single value), whole decades on a log axis.
+    /// around a single value); on a log axis (values in decades) out to whole decades.
     fn axis(self, log: bool) -> (f64, f64) {
         match (self.0, log) {
             (None, false) => (0.0, 1.0),
-            (None, true) => (0.1, 1.0),
+            (None, true) => (-1.0, 0.0),
             (Some((lo, hi)), false) => {
                 let pad = if hi > lo { 0.05 * (hi - lo) } else { 1.0 };
                 (lo - pad, hi + pad)
             }
+            // On a log axis the values are already decades.
             (Some((lo, hi)), true) => {
-                let lo = 10f64.powf(lo.log10().floor());
-                let hi = 10f64.powf(hi.log10().ceil());
-                (lo, if hi > lo { hi } else { 10.0 * lo })
+                let (lo, hi) = (lo.floor(), hi.ceil());
+                (lo, if hi > lo { hi } else { lo + 1.0 })
             }
         }
     }

@@ -15,8 +15,10 @@
 //! - Eq. 27 and 28 are used in their corrected form: the printed damping term
 //!   `-C_d·v` lacks the mass; the impulse is `-(m/dt)·C_k·x - m·C_d·v`.
 
-/// Particle and angular-spring networks (distance springs in 1-3 D, angular
-/// springs; Gauss-Seidel and Jacobi steppers; invariants; scene builders).
+// Particle and angular-spring networks (distance springs in 1-3 D, angular
+// springs; Gauss-Seidel and Jacobi steppers; invariants; scene builders). Its own
+// module docs are the documentation: an outer doc here would make rustdoc resolve
+// their links in this module instead of that one.
 pub mod network;
 
 // ---------------------------------------------------------------------------

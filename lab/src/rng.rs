@@ -13,7 +13,7 @@
 //!
 //! The conversions to `f64` are written here, from the top 53 bits of a draw, rather
 //! than taken from rand's distributions, whose value stability rand promises only within
-//! a minor version; [`tests::the_sequence_is_pinned`] checks the first draws.
+//! a minor version; the unit test `the_sequence_is_pinned` checks the first draws.
 
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{Rng as _, SeedableRng as _};
