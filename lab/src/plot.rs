@@ -695,8 +695,12 @@ mod tests {
             ))
             .render();
         assert!(is_svg(&svg));
-        // Two of the four points can be drawn on log axes.
-        assert_eq!(svg.matches("<circle").count(), 2, "{svg}");
+        // Two of the four points can be drawn on log axes; the third dot is the legend's.
+        assert_eq!(svg.matches("<circle").count(), 2 + 1, "{svg}");
+        // Decade ticks: 1e-9 to 1e-3 on y, 1 to 100 on x.
+        for tick in ["1e-9", "1e-6", "0.001", "\n1\n", "\n10\n", "\n100\n"] {
+            assert!(svg.contains(tick), "{tick} missing");
+        }
     }
 
     #[test]
