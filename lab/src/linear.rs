@@ -1,7 +1,7 @@
 //! The network stability measurements: topologies (ropes, meshes, mass profiles,
 //! pinning), the share count the scene uses, the **linearised step matrix** of a network
-//! about its rest state for either stepper, and its eigenvalues (nalgebra's real Schur
-//! form, after Parlett–Reinsch balancing).
+//! about its rest state for either stepper, and its eigenvalues (faer's dense
+//! eigenvalue solver).
 //!
 //! Nothing here uses the library: the step matrix is written from the position-level
 //! impulse of the seed article (eq. 27 and 28 with the step velocity `u = v·dt` and the
@@ -27,55 +27,41 @@
 //! `√ε ≈ 1.5e−8`, so [`growth_rate`] ignores eigenvalues within `NEUTRAL` of 1.
 
 use crate::rng::Rng;
-use nalgebra::linalg::{Schur, balancing};
-use nalgebra::{Complex, DMatrix};
 
 /// A dense real matrix.
-pub type Matrix = DMatrix<f64>;
+pub type Matrix = faer::Mat<f64>;
 
-/// Deflation tolerances of the Schur iteration, tried in turn (relative to the
-/// neighbouring diagonal entries).
-///
-/// nalgebra's Francis iteration has no exceptional shifts, and with a tolerance of one
-/// machine epsilon (its default, with no iteration limit) it can cycle forever on these
-/// step matrices: a free rope of three particles under Jacobi at `C = 1`, or a 3×3 mesh
-/// with diagonals at `C = 1.5`, whose eigenvalues lie on the unit circle. 1e−14 (45 ulp)
-/// converges on every matrix the tests build; a deflated entry that small moves a
-/// well-conditioned eigenvalue by as much, far below the tests' tolerances (1e−9, and
-/// [`NEUTRAL`]). The looser ones are a fallback.
-pub const DEFLATION: [f64; 3] = [1e-14, 1e-12, 1e-10];
+/// A complex eigenvalue.
+pub type Complex = faer::c64;
 
 /// The eigenvalues of a real square matrix, complex ones in conjugate pairs.
 ///
-/// The matrix is balanced first (a diagonal similarity that equalises the norms of rows
-/// and columns, so that couplings of very different scale, such as mass ratios of 1:100,
-/// do not cost accuracy), then reduced to real Schur form by nalgebra; the eigenvalues
-/// are read from its 1×1 and 2×2 diagonal blocks.
+/// faer reduces the matrix to Hessenberg and then real Schur form with LAPACK's
+/// algorithms (multishift QR with aggressive early deflation, and exceptional shifts
+/// when it stalls). nalgebra's Schur iteration, tried first, has no exceptional shifts:
+/// it cycled for ever on step matrices whose eigenvalues crowd the unit circle (a free
+/// 3-particle rope under Jacobi at `C = 1`), and even with a looser deflation tolerance
+/// and an iteration limit it failed on 2 of 1 680 matrices of the network-limit sweep
+/// (9×9 and hanging 10×10 meshes); faer solves all of them.
 ///
 /// # Panics
 ///
-/// When the iteration converges at none of the [`DEFLATION`] tolerances within `100·n`
-/// sweeps each; the panic names the size.
-pub fn eigenvalues(m: &Matrix) -> Vec<Complex<f64>> {
+/// When faer reports that the iteration did not converge; the panic names the size.
+pub fn eigenvalues(m: &Matrix) -> Vec<Complex> {
     let n = m.nrows();
-    assert!(m.is_square(), "eigenvalues of a {n}×{} matrix", m.ncols());
+    assert_eq!(n, m.ncols(), "eigenvalues of a non-square matrix");
     if n == 0 {
         return Vec::new();
     }
-    let mut balanced = m.clone();
-    balancing::balance_parlett_reinsch(&mut balanced);
-    let schur = DEFLATION
-        .iter()
-        .find_map(|&eps| Schur::try_new(balanced.clone(), eps, 100 * n))
-        .unwrap_or_else(|| panic!("the Schur iteration did not converge ({n}×{n})"));
-    schur.complex_eigenvalues().iter().copied().collect()
+    m.eigenvalues()
+        .unwrap_or_else(|e| panic!("no eigenvalues of a {n}×{n} matrix: {e:?}"))
 }
 
 /// The largest `|λ|` of `m`.
 pub fn spectral_radius(m: &Matrix) -> f64 {
     eigenvalues(m)
         .into_iter()
-        .map(|e| e.norm())
+        .map(|e| e.re.hypot(e.im))
         .fold(0.0, f64::max)
 }
 
@@ -314,7 +300,11 @@ impl Topology {
             }
         }
         if order == Order::Jacobi {
-            stage += &sum;
+            for row in 0..n {
+                for col in 0..n {
+                    stage[(row, col)] += sum[(row, col)];
+                }
+            }
         }
         // Drift: p ← p + u (with the new u).
         let mut step = stage.clone();
@@ -381,7 +371,7 @@ pub fn growth_rate(m: &Matrix) -> f64 {
     eigenvalues(m)
         .into_iter()
         .filter(|e| (e.re - 1.0).hypot(e.im) > NEUTRAL)
-        .map(|e| e.norm())
+        .map(|e| e.re.hypot(e.im))
         .fold(0.0, f64::max)
         - 1.0
 }
@@ -585,13 +575,12 @@ mod tests {
                 }
             }
             // S = I + small random.
-            let mut s = Matrix::identity(size, size);
-            for v in s.iter_mut() {
-                *v += rng.range(-0.3, 0.3) / size as f64;
-            }
-            let inv = s.clone().try_inverse().expect("well conditioned");
+            let s = Matrix::from_fn(size, size, |i, j| {
+                f64::from(u8::from(i == j)) + rng.range(-0.3, 0.3) / size as f64
+            });
+            let inv = faer::linalg::solvers::DenseSolveCore::inverse(&s.partial_piv_lu());
             let a = &s * &d * &inv;
-            let mut got: Vec<f64> = eigenvalues(&a).iter().map(|e| e.norm()).collect();
+            let mut got: Vec<f64> = eigenvalues(&a).iter().map(|e| e.re.hypot(e.im)).collect();
             got.sort_by(f64::total_cmp);
             expected.sort_by(f64::total_cmp);
             for (g, e) in got.iter().zip(&expected) {
