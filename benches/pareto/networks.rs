@@ -19,7 +19,6 @@
 //! has no row of its own here.
 //!
 //! The time is reported per spring step: a scene step divided by the number of springs.
-#![allow(dead_code)]
 
 use lab::measure::Candidate;
 use lab::pareto::Real;

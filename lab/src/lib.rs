@@ -6,7 +6,7 @@
 //! | module | what it is |
 //! |---|---|
 //! | [`reference`](mod@reference) | the independent f64 models of the seed article's springs and networks, written from its equations |
-//! | [`linear`] | the linearised step matrix of a network and its eigenvalues (faer) |
+//! | [`linear`] | the linearised step matrix of a network and its eigenvalues (nalgebra) |
 //! | [`rng`] | a seeded, portable random generator (rand's xoshiro256++) for reproducible inputs |
 //! | [`knob`] | a simulated rotor (exact zero-order hold, encoder) and SmartKnob-style PD detents |
 //! | [`measure`] | interleaved timing of several candidates on a noisy machine |

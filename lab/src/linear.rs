@@ -1,7 +1,7 @@
 //! The network stability measurements: topologies (ropes, meshes, mass profiles,
 //! pinning), the share count the scene uses, the **linearised step matrix** of a network
-//! about its rest state for either stepper, and its eigenvalues (faer's dense
-//! eigenvalue solver).
+//! about its rest state for either stepper, and its eigenvalues (nalgebra's real Schur
+//! form).
 //!
 //! Nothing here uses the library: the step matrix is written from the position-level
 //! impulse of the seed article (eq. 27 and 28 with the step velocity `u = v·dt` and the
@@ -28,40 +28,72 @@
 
 use crate::rng::Rng;
 
+use nalgebra::linalg::{Schur, balancing};
+
 /// A dense real matrix.
-pub type Matrix = faer::Mat<f64>;
+pub type Matrix = nalgebra::DMatrix<f64>;
 
 /// A complex eigenvalue.
-pub type Complex = faer::c64;
+pub type Complex = nalgebra::Complex<f64>;
+
+/// Deflation tolerances of the Schur iteration, tried in turn (relative to the
+/// neighbouring diagonal entries), each for at most `100·n` sweeps.
+///
+/// nalgebra's default is one machine epsilon and no iteration limit, with which its
+/// Francis iteration (it has no exceptional shifts) cycled for ever on some of these step
+/// matrices, whose eigenvalues crowd the unit circle: a free 3-particle rope under Jacobi
+/// at `C = 1`, a 3×3 mesh with diagonals at `C = 1.5`. 1e−14 (45 ulp) converges on all of
+/// the tests' matrices; a deflated entry that small moves a well-conditioned eigenvalue
+/// by as much, far below the tests' tolerances (1e−9, and [`NEUTRAL`]).
+pub const DEFLATION: [f64; 3] = [1e-14, 1e-12, 1e-10];
 
 /// The eigenvalues of a real square matrix, complex ones in conjugate pairs.
 ///
-/// faer reduces the matrix to Hessenberg and then real Schur form with LAPACK's
-/// algorithms (multishift QR with aggressive early deflation, and exceptional shifts
-/// when it stalls). nalgebra's Schur iteration, tried first, has no exceptional shifts:
-/// it cycled for ever on step matrices whose eigenvalues crowd the unit circle (a free
-/// 3-particle rope under Jacobi at `C = 1`), and even with a looser deflation tolerance
-/// and an iteration limit it failed on 2 of 1 680 matrices of the network-limit sweep
-/// (9×9 and hanging 10×10 meshes); faer solves all of them.
+/// The matrix is balanced (a diagonal similarity that equalises the norms of rows and
+/// columns, so that couplings of very different scale, such as mass ratios of 1:100, do
+/// not cost accuracy), then reduced to real Schur form by nalgebra at the [`DEFLATION`]
+/// tolerances; the eigenvalues are read from its 1×1 and 2×2 diagonal blocks. When the
+/// iteration still stalls (2 of the 1 680 matrices the network-limit sweep builds for a
+/// 9×9 mesh and a hanging 10×10 one), it is run again on `QᵀAQ` for a seeded random
+/// orthogonal `Q`, which has the same eigenvalues (to rounding, `ε·‖A‖`) and breaks the
+/// symmetry the shifts were stuck on. (faer 0.24, tried as well, hung on an 80×80
+/// matrix of a free 20-particle rope under Jacobi that nalgebra solves at once.)
 ///
 /// # Panics
 ///
-/// When faer reports that the iteration did not converge; the panic names the size.
+/// When none of three rotations converges either; the panic names the size.
 pub fn eigenvalues(m: &Matrix) -> Vec<Complex> {
     let n = m.nrows();
-    assert_eq!(n, m.ncols(), "eigenvalues of a non-square matrix");
+    assert!(m.is_square(), "eigenvalues of a {n}×{} matrix", m.ncols());
     if n == 0 {
         return Vec::new();
     }
-    m.eigenvalues()
-        .unwrap_or_else(|e| panic!("no eigenvalues of a {n}×{n} matrix: {e:?}"))
+    let schur = |a: &Matrix| {
+        let mut balanced = a.clone();
+        balancing::balance_parlett_reinsch(&mut balanced);
+        DEFLATION
+            .iter()
+            .find_map(|&eps| Schur::try_new(balanced.clone(), eps, 100 * n))
+    };
+    let rotated = |seed: u64| {
+        let mut rng = Rng::seeded(seed);
+        let q = Matrix::from_fn(n, n, |_, _| rng.sym(1.0)).qr().q();
+        schur(&(q.transpose() * m * &q))
+    };
+    schur(m)
+        .or_else(|| (1..=3).find_map(rotated))
+        .unwrap_or_else(|| panic!("the Schur iteration did not converge ({n}×{n})"))
+        .complex_eigenvalues()
+        .iter()
+        .copied()
+        .collect()
 }
 
 /// The largest `|λ|` of `m`.
 pub fn spectral_radius(m: &Matrix) -> f64 {
     eigenvalues(m)
         .into_iter()
-        .map(|e| e.re.hypot(e.im))
+        .map(|e| e.norm())
         .fold(0.0, f64::max)
 }
 
@@ -300,11 +332,7 @@ impl Topology {
             }
         }
         if order == Order::Jacobi {
-            for row in 0..n {
-                for col in 0..n {
-                    stage[(row, col)] += sum[(row, col)];
-                }
-            }
+            stage += &sum;
         }
         // Drift: p ← p + u (with the new u).
         let mut step = stage.clone();
@@ -371,7 +399,7 @@ pub fn growth_rate(m: &Matrix) -> f64 {
     eigenvalues(m)
         .into_iter()
         .filter(|e| (e.re - 1.0).hypot(e.im) > NEUTRAL)
-        .map(|e| e.re.hypot(e.im))
+        .map(|e| e.norm())
         .fold(0.0, f64::max)
         - 1.0
 }
@@ -578,15 +606,50 @@ mod tests {
             let s = Matrix::from_fn(size, size, |i, j| {
                 f64::from(u8::from(i == j)) + rng.range(-0.3, 0.3) / size as f64
             });
-            let inv = faer::linalg::solvers::DenseSolveCore::inverse(&s.partial_piv_lu());
+            let inv = s.clone().try_inverse().expect("well conditioned");
             let a = &s * &d * &inv;
-            let mut got: Vec<f64> = eigenvalues(&a).iter().map(|e| e.re.hypot(e.im)).collect();
+            let mut got: Vec<f64> = eigenvalues(&a).iter().map(|e| e.norm()).collect();
             got.sort_by(f64::total_cmp);
             expected.sort_by(f64::total_cmp);
             for (g, e) in got.iter().zip(&expected) {
                 assert!((g - e).abs() < 1e-9, "size {size}: {got:?} vs {expected:?}");
             }
             assert!((spectral_radius(&a) - expected[size - 1]).abs() < 1e-9);
+        }
+    }
+
+    /// The matrices on which the Schur iteration stalls without a rotation.
+    #[test]
+    fn stalled_iterations_are_rotated() {
+        for top in [
+            Topology::mesh(9, 9, false, false),
+            Topology::mesh(10, 10, false, true),
+        ] {
+            let c = if top.name.contains("hanging") {
+                0.21328000000000003
+            } else {
+                0.31992
+            };
+            let m = top.springs.len();
+            let a = top.step_matrix(&vec![c; m], &vec![1.0664; m], Order::GaussSeidel);
+            let mut balanced = a.clone();
+            balancing::balance_parlett_reinsch(&mut balanced);
+            let n = a.nrows();
+            let stalls = DEFLATION
+                .iter()
+                .all(|&eps| Schur::try_new(balanced.clone(), eps, 100 * n).is_none());
+            assert!(
+                stalls,
+                "{}: converges now; the rotation is no longer needed for it",
+                top.name
+            );
+            let e = eigenvalues(&a);
+            assert_eq!(e.len(), n);
+            assert!(e.iter().all(|z| z.re.is_finite() && z.im.is_finite()));
+            // These points lie on the edge of the bisection, near marginal stability: the
+            // spectral radius is 1 to a few parts per million.
+            let radius = spectral_radius(&a);
+            assert!((radius - 1.0).abs() < 1e-4, "{}: ρ = {radius}", top.name);
         }
     }
 
