@@ -387,6 +387,7 @@ impl Repo {
         let split = words.iter().position(|w| *w == "--").unwrap_or(words.len());
         let (args, rest) = (&words[..split], &words[(split + 1).min(words.len())..]);
         let mut test_targets = Vec::new();
+        let mut positional: Vec<&str> = Vec::new();
         let mut it = args.iter().skip(2);
         while let Some(&w) = it.next() {
             let (flag, inline) = match w.split_once('=') {
@@ -403,7 +404,29 @@ impl Repo {
                 "--features",
                 "--target",
             ];
+            // Flags whose value is not checked, but is not a test filter either.
+            let others = [
+                "--profile",
+                "-j",
+                "--jobs",
+                "--config",
+                "--manifest-path",
+                "--target-dir",
+                "--color",
+                "--message-format",
+                "-Z",
+            ];
+            if others.contains(&flag) {
+                if inline.is_none() {
+                    it.next();
+                }
+                continue;
+            }
             if !takes.contains(&flag) {
+                // `cargo test NAME`: a filter, as after `--`.
+                if sub == "test" && !w.starts_with('-') {
+                    positional.push(w);
+                }
                 continue;
             }
             let Some(value) = inline.or_else(|| it.next().copied()) else {
@@ -443,6 +466,7 @@ impl Repo {
                 .iter()
                 .copied()
                 .filter(|w| !w.starts_with('-'))
+                .chain(positional.iter().copied())
                 .collect();
             let wants_ignored = rest
                 .iter()
@@ -768,9 +792,14 @@ fn calls_ignored(line: &str, name: &str) -> bool {
         .nth(59)
         .map_or(0, |(i, _)| i);
     let before = &line[start..at];
-    before.contains("ignored")
-        && !before.contains("not ignored")
-        && !before.contains("no longer ignored")
+    let after = &line[at + name.len() + 2..];
+    let said_after = [" is ignored", " (ignored", ", ignored", " is #[ignore]d"]
+        .iter()
+        .any(|s| after.starts_with(s));
+    said_after
+        || before.contains("ignored")
+            && !before.contains("not ignored")
+            && !before.contains("no longer ignored")
 }
 
 /// `*` matches any run of characters other than `/`.
@@ -879,6 +908,7 @@ mod tests {
             "the test `a_b_c` runs; others are ignored",
             "a_b_c"
         ));
+        assert!(calls_ignored("the test `a_b_c` is ignored", "a_b_c"));
     }
 
     #[test]
