@@ -10,7 +10,7 @@
 //! with `rustc-link-arg-examples`, never `rustc-link-search`: the latter would reach the
 //! link of any firmware that depends on this crate and hand it our memory map.
 //! `-Tdefmt.x` is not passed here; an example that logs through defmt asks for it itself
-//! (see `examples/firmware/log_defmt.rs`).
+//! (see `firmware::output!(defmt)` in `firmware/src/output.rs`).
 
 use std::{env, fs, path::PathBuf};
 

@@ -26,11 +26,7 @@
 //! expression that builds an `Option<impl Bench>` (a state with a `step`).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[macro_use]
-#[path = "firmware/text.rs"]
-mod log;
-#[path = "firmware/mod.rs"]
-mod firmware;
+firmware::output!(text);
 
 use stiffspring::kernel::Coefficients;
 use stiffspring::length::{Exact, LengthKernel, Linearised};
@@ -295,7 +291,9 @@ const _: () = {
 // The harness
 // ---------------------------------------------------------------------------------------
 
-/// The CMSDK TIMER0 of the MPS2 boards (DESIGN.md, "Deterministic cost").
+/// The CMSDK TIMER0 of the MPS2 boards: QEMU does not implement the DWT cycle counter,
+/// but with `-icount shift=10` this 25 MHz timer advances by exactly 40/1024 of a tick
+/// per instruction (ARM's MPS2 documentation for the address, QEMU's for `-icount`).
 #[cfg(target_os = "none")]
 mod timer {
     const CTRL: *mut u32 = 0x4000_0000 as *mut u32;

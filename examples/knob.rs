@@ -19,19 +19,10 @@
 //! Cortex-M0, and logs every detent change and endstop hit through defmt.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[macro_use]
-#[path = "firmware/log_defmt.rs"]
-mod log;
-#[path = "firmware/mod.rs"]
-mod firmware;
-#[path = "golden/knob.rs"]
-mod golden;
-#[cfg(not(target_os = "none"))]
-#[path = "support/plot.rs"]
-mod plot;
-#[path = "scenes/knob.rs"]
-mod scene;
+firmware::output!(defmt);
 
+use firmware::golden::knob as golden;
+use firmware::scenes::knob as scene;
 use scene::{COUNT, DT, INERTIA, LIMIT, MAX, config};
 
 use stiffspring::knob::Endstop;
@@ -205,7 +196,8 @@ fn sweep<S: Scalar>() -> bool {
 
 #[cfg(not(target_os = "none"))]
 mod host {
-    use super::{Sample, plot};
+    use super::Sample;
+    use lab::plot;
     use std::path::Path;
 
     /// Prints the trace every 25 ms and writes `target/tour/knob.svg`.

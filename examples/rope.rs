@@ -3,8 +3,7 @@
 //! On the host: `cargo run --example rope` prints the tip's path and the final shape.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[path = "scenes/rope.rs"]
-mod scene;
+use firmware::scenes::rope as scene;
 
 #[cfg(not(target_os = "none"))]
 fn main() -> Result<(), stiffspring::Error> {
@@ -42,20 +41,14 @@ fn main() -> Result<(), stiffspring::Error> {
 // `cargo run --release --target thumbv7em-none-eabihf --example rope` (QEMU mps2-an386,
 // Cortex-M4F) or `--target thumbv6m-none-eabi` (QEMU microbit, Cortex-M0) plays the rope
 // in `f32` and in `I16F16` (on the M0 `f32` is soft float, for the comparison) and
-// compares every particle every `golden::EVERY` steps with `examples/golden/rope.rs`: the
+// compares every particle every `golden::EVERY` steps with `firmware/src/golden/rope.rs`: the
 // reference network model's Gauss-Seidel rope in f64
 // (`STIFFSPRING_BLESS=1 cargo test --test golden`). It exits with failure on a mismatch.
 
 #[cfg(target_os = "none")]
-#[macro_use]
-#[path = "firmware/text.rs"]
-mod log;
+firmware::output!(text);
 #[cfg(target_os = "none")]
-#[path = "firmware/mod.rs"]
-mod firmware;
-#[cfg(target_os = "none")]
-#[path = "golden/rope.rs"]
-mod golden;
+use firmware::golden::rope as golden;
 
 /// How far each backend's rope may stray from the f64 reference, in metres, on a rope of
 /// 1.1 m swinging through 2 m.

@@ -9,10 +9,10 @@
 //! cargo run --release --target thumbv6m-none-eabi --example value    # QEMU microbit, Cortex-M0
 //! ```
 //!
-//! The scene (`examples/scenes/value.rs`) is three values at 60 Hz: a bouncy card that
+//! The scene (`firmware/src/scenes/value.rs`) is three values at 60 Hz: a bouncy card that
 //! is retargeted mid-flight and flung, a critically damped scroll offset, an overdamped
 //! slider dragged in steps. Every value uses the exact map, so its samples should lie on
-//! the continuous trajectory; `examples/golden/value.rs` has that trajectory, computed on
+//! the continuous trajectory; `firmware/src/golden/value.rs` has that trajectory, computed on
 //! the host by the reference model (`STIFFSPRING_BLESS=1 cargo test --test golden`).
 //! Each backend plays the scene twice, as separate [`SpringValue`]s and as one
 //! [`SpringBatch`] (which must agree with the values to the bit), and the program exits
@@ -21,17 +21,11 @@
 //! the backend to use and `f32` runs in soft float, for the comparison.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[macro_use]
-#[path = "firmware/text.rs"]
-mod log;
-#[path = "firmware/mod.rs"]
-mod firmware;
-#[path = "golden/value.rs"]
-mod golden;
-#[path = "scenes/value.rs"]
-mod scene;
+firmware::output!(text);
 
 use firmware::Tally;
+use firmware::golden::value as golden;
+use firmware::scenes::value as scene;
 use scene::{DT, Event, FRAMES, TRACKS, Track};
 use stiffspring::{I16F16, RestThreshold, Scalar, SpringBatch, SpringValue, Tuning};
 

@@ -2,7 +2,8 @@
 //!
 //! Stiff, unconditionally stable springs for microcontrollers: the detents and endstops of
 //! a haptic knob at a 1–10 kHz control loop, and UI values springing to their targets at
-//! 60–120 Hz. `no_std`, no allocation; `f32`, `f64` or fixed point.
+//! 60–120 Hz. `no_std`, no allocation, no `unsafe` (except the opt-in `hw-sqrt` kernel);
+//! `f32`, `f64` or fixed point.
 //!
 //! The spring is the one of *Towards a simpler, stiffer, and more stable spring*: instead
 //! of raw `k` and `d`, a spring has two coefficients `C_k, C_d ∈ [0, 1]` that are fractions

@@ -16,9 +16,7 @@
 //!
 //! `cargo test --release --test fixed_point_limits -- --nocapture` prints the tables.
 
-mod linear;
-
-use linear::Topology;
+use lab::linear::Topology;
 use stiffspring::scene::{LimitPolicy, Scene, SceneConfig, Stepper};
 use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
 
@@ -227,13 +225,13 @@ fn library_i16f16_follows_the_model_beyond_the_square() {
     }
 }
 
-/// Beyond the square, a fixed-point value does not always come to rest, against the
-/// documented promise ("a fixed-point value always settles"): its rest band covers the
-/// dead band `1/C_k` LSB of the square, not the limit cycles of truncation beyond it.
-/// With a threshold below the dead band, tunings of the extended region cycle for ever
-/// (a few LSB); an undersampled, very lightly damped oscillator from the exact map
-/// (`f·dt = 0.3`, `ζ = 3·10⁻⁴`, so `C_k ≈ 2.6`) cycles by hundreds of LSB, beyond even
-/// the default threshold (a thousandth of a unit, 65 LSB).
+/// Beyond the square, truncation can leave a fixed-point spring in a limit cycle: a few
+/// LSB for tunings of the extended region, hundreds of LSB for an undersampled, very
+/// lightly damped oscillator from the exact map (`f·dt = 0.3`, `ζ = 3·10⁻⁴`, so
+/// `C_k ≈ 2.6`), beyond even the default threshold (a thousandth of a unit, 65 LSB). A
+/// value keeps the documented promise ("a fixed-point value always settles") because its
+/// rest band also covers those cycles (`4/C_d` LSB beyond the square, `src/rest.rs`),
+/// even with a threshold far below the dead band.
 #[test]
 fn a_fixed_point_value_beyond_the_square_comes_to_rest() {
     let tiny = RestThreshold::new(1e-12, 1e-12).unwrap();
@@ -437,9 +435,9 @@ fn braced_networks_fall_asleep_in_f64_and_i32f32() {
     }
 }
 
-/// In `I16F16` the same networks cycle with step velocities of a few LSB, above the
-/// island's sleep threshold, which is one LSB (`10⁻³·dt` is below the resolution), so
-/// some of them never sleep.
+/// In `I16F16` the same networks cycle with step velocities of 2 to 4 LSB, above the
+/// default sleep threshold (`10⁻³·dt` is below the resolution); the scene widens its
+/// threshold to 8 LSB in fixed point, so every island falls asleep.
 #[test]
 fn braced_networks_fall_asleep_in_i16f16() {
     let rows = network_table::<I16F16>();

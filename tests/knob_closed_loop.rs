@@ -3,9 +3,7 @@
 //! after a flick the loop neither grows nor keeps oscillating above the encoder's
 //! quantisation, and the torque clamp does not break that.
 
-mod knob_support;
-
-use knob_support::{COUNT, Plant};
+use lab::knob::{COUNT, Plant};
 use stiffspring::knob::{Latency, spectral_radius};
 use stiffspring::{Knob, KnobConfig};
 
@@ -41,7 +39,7 @@ fn run(config: &KnobConfig, delay: f64, start: f64, flick: f64, seconds: f64) ->
     for _ in 0..n {
         let out = knob.update(plant.read());
         assert!(out.torque.is_finite() && out.torque.abs() <= 1.0);
-        plant.step(out.torque * LIMIT, &mut knob_support::no_hand);
+        plant.step(out.torque * LIMIT, &mut lab::knob::no_hand);
         angles.push(plant.theta);
         torques.push(out.torque);
     }
@@ -181,7 +179,7 @@ fn every_layer_at_once_settles_after_a_flick_into_the_endstop() {
             for k in 0..n {
                 let out = knob.update(plant.read() as f32);
                 hit |= out.events.endstop_hit.is_some();
-                plant.step(f64::from(out.torque) * LIMIT, &mut knob_support::no_hand);
+                plant.step(f64::from(out.torque) * LIMIT, &mut lab::knob::no_hand);
                 assert!(
                     plant.theta < 3.5,
                     "{rate} {latency:?}: ran through the endstop"

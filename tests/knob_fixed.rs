@@ -6,9 +6,7 @@
 //! error is too. Run `cargo test --release --test knob_fixed -- --nocapture` for the
 //! table; the bounds asserted are the measured worst cases with about 50% headroom.
 
-mod knob_support;
-
-use knob_support::{COUNT, Plant};
+use lab::knob::{COUNT, Plant};
 use stiffspring::{I16F16, I32F32, Knob, KnobConfig, Scalar};
 
 const INERTIA: f64 = 1e-5;

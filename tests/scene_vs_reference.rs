@@ -1,5 +1,5 @@
 //! The network [`Scene`] against the independent f64 reference networks of
-//! `tests/reference/network.rs` (written straight from the article), in every backend, with
+//! `lab/src/reference/network.rs` (written straight from the article), in every backend, with
 //! both steppers and every length kernel that applies.
 //!
 //! - **Units.** The library stores step velocities `u = v·dt`; the reference stores `v`.
@@ -31,9 +31,11 @@
 //! `cargo test --release --test scene_vs_reference -- --nocapture --test-threads=1` prints
 //! the tables, the spinning pair's distances and the momentum drift.
 
-mod reference;
+use lab::rng::Rng;
 
-use reference::network::{AngularNetwork, Network, mesh_2d, pair_2d, rope_2d, spinning_pair_2d};
+use lab::reference::network::{
+    AngularNetwork, Network, mesh_2d, pair_2d, rope_2d, spinning_pair_2d,
+};
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write as _;
 use stiffspring::length::{Approximate, ApproximateNewton, Exact, LengthKernel, Linearised};
@@ -45,29 +47,6 @@ const P: usize = 24;
 const K: usize = 64;
 
 const STEPPERS: [Stepper; 2] = [Stepper::GaussSeidel, Stepper::Jacobi];
-
-/// Small deterministic LCG (Knuth's MMIX constants).
-struct Lcg(u64);
-
-impl Lcg {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in [−a, a).
-    fn sym(&mut self, a: f64) -> f64 {
-        a * (2.0 * self.unit() - 1.0)
-    }
-
-    /// Log-uniform in [lo, hi).
-    fn log_range(&mut self, lo: f64, hi: f64) -> f64 {
-        (lo.ln() + (hi.ln() - lo.ln()) * self.unit()).exp()
-    }
-}
 
 fn stepper_name(stepper: Stepper) -> &'static str {
     match stepper {
@@ -300,7 +279,7 @@ fn rope_under_gravity_matches_the_reference() {
 /// A square 4×4 jelly mesh with diagonals (spacing 0.25, 8 springs on an inner
 /// particle), free, squashed, spinning and jittered, masses 0.5–2. 3 s at 120 Hz.
 fn free_jelly() -> Network<2> {
-    let mut rng = Lcg(11);
+    let mut rng = Rng::seeded(11);
     let mut net = mesh_2d(4, 4, 0.25, true, 0.1, 0.1);
     let c = 0.375;
     for p in net.particles.iter_mut() {
@@ -432,7 +411,7 @@ fn spinning_pair_matches_the_reference() {
 // ---------------------------------------------------------------------------
 
 /// The discrete steady orbit of a spinning pair under `C_k = C_d = 1` (derived in
-/// `tests/reference_network_selftest.rs`): the separation `r` turns by `φ` per step,
+/// `lab/tests/reference_network_selftest.rs`): the separation `r` turns by `φ` per step,
 /// with `r = L/cos φ` and `L²·sin φ/cos² φ = d0²·ω·dt` (angular momentum). Returns
 /// `(r, φ)`.
 fn steady_orbit(rest: f64, d0: f64, omega: f64, dt: f64) -> (f64, f64) {
@@ -833,7 +812,7 @@ fn wrapped_angle_takes_the_short_way() {
 /// [0.25, 4]. `dt = 1/128`, a power of two, so `Scene::momentum`'s `u/(m⁻¹·dt)` is exact
 /// for unit masses.
 fn drifting_jelly(equal: bool) -> Network<2> {
-    let mut rng = Lcg(if equal { 21 } else { 22 });
+    let mut rng = Rng::seeded(if equal { 21 } else { 22 });
     let mut net = mesh_2d(4, 4, 0.25, true, 0.1, 0.02);
     let c = 0.375;
     for p in net.particles.iter_mut() {
@@ -920,7 +899,7 @@ fn free_networks_conserve_momentum_to_rounding() {
     // With equal masses the fixed-point kernel's two changes are exact negatives: the
     // momentum does not drift at all (and `Scene::momentum` is exact at dt = 1/128).
     // With unequal masses each body's change is rounded toward zero on its own, and the
-    // drift is systematic: measured 0.18–0.26 LSB·kg per step, in both fixed formats.
+    // drift is systematic: measured 0.15–0.24 LSB·kg per step, in both fixed formats.
     let bounds: [(&str, bool, [f64; 2]); 8] = [
         ("f64", true, [1e-14, 5e-15]),
         ("f64", false, [1e-14, 1e-14]),
@@ -929,7 +908,8 @@ fn free_networks_conserve_momentum_to_rounding() {
         ("I32F32", true, [0.0, 5e-8]),
         ("I32F32", false, [2e-5, 1e-5]),
         ("I16F16", true, [0.0, 5e-3]),
-        ("I16F16", false, [1.0, 0.2]),
+        // Measured 0.23 and 0.25 (Jacobi), 0.22 and 0.07 (Gauss-Seidel).
+        ("I16F16", false, [0.75, 0.75]),
     ];
     // The fixed-point drift per step, in LSB of step velocity times kg.
     let per_step_bound = 1.0;

@@ -9,9 +9,8 @@
 //! is the worst `|τ − τ_f64|` over the run, in fractions of the torque limit (the
 //! torque's own unit), against the `f64` knob on the same angles (so `f64` itself reads
 //! 0). The timed loop is `update` on a precomputed array of angles in the backend.
-#![allow(dead_code)]
 
-use crate::measure::Candidate;
+use lab::measure::Candidate;
 use std::hint::black_box;
 use stiffspring::{I16F16, I32F32, Knob, KnobConfig, Scalar};
 

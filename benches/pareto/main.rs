@@ -11,28 +11,23 @@
 //! and step rate), and prints the ratios against each peer. See `BENCHMARKS.md` for how
 //! to read them.
 //!
-//! - `ns_per_step` is the median over interleaved batches (`measure.rs`) of one value
+//! - `ns_per_step` is the median over interleaved batches (`lab::measure`) of one value
 //!   step, one knob update, or one spring of a network step (a scene step divided by its
 //!   springs). Every implementation of a scene is timed in the same process, round-robin,
 //!   so the ratios hold on a noisy machine; absolute numbers move from run to run.
 //! - `max_rel_error` is the worst deviation over the run from the analytic solution
-//!   (1D scenes, `values.rs`), from the f64 reference model (networks, `networks.rs`), or
+//!   (1D scenes, `values.rs` and `lab::pareto`), from the f64 reference model (networks,
+//!   `networks.rs`), or
 //!   from the f64 knob (`knob.rs`), relative to the scene's amplitude.
 
-#[path = "../../examples/support/plot.rs"]
-mod plot;
-#[path = "../../tests/reference/mod.rs"]
-mod reference;
-
 mod knob;
-mod measure;
 mod networks;
 mod values;
 
-use measure::{Candidate, Plan};
-use plot::{Grid, Plot, Series};
+use lab::measure::{self, Candidate, Plan};
+use lab::pareto::ValueScene;
+use lab::plot::{Grid, Plot, Series};
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -86,7 +81,7 @@ fn time(pending: Vec<Pending>, plan: Plan) -> Vec<Row> {
 
 fn value_rows(plan: Plan) -> Vec<Row> {
     let mut rows = Vec::new();
-    for scene in values::ValueScene::all() {
+    for scene in ValueScene::all() {
         let pending = values::entries(&scene)
             .into_iter()
             .map(|e| Pending {
@@ -162,15 +157,30 @@ fn out_dir() -> PathBuf {
 }
 
 fn csv(rows: &[Row]) -> String {
-    let mut out = String::from("scene,implementation,backend,step_hz,ns_per_step,max_rel_error\n");
-    for r in rows {
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{:.3},{:.3e}",
-            r.scene, r.implementation, r.backend, r.step_hz, r.ns_per_step, r.max_rel_error
-        );
-    }
-    out
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.scene.clone(),
+                r.implementation.clone(),
+                r.backend.clone(),
+                r.step_hz.to_string(),
+                format!("{:.3}", r.ns_per_step),
+                format!("{:.3e}", r.max_rel_error),
+            ]
+        })
+        .collect();
+    lab::table::csv(
+        &[
+            "scene",
+            "implementation",
+            "backend",
+            "step_hz",
+            "ns_per_step",
+            "max_rel_error",
+        ],
+        &cells,
+    )
 }
 
 /// The top of the error axis: a diverged run (an unstable kernel, the ζ = 1 bug of a
@@ -228,7 +238,7 @@ fn svg(rows: &[Row]) -> String {
             .y_label("max relative error")
             .log_x()
             .log_y()
-            .size(520.0, 380.0);
+            .size(520, 380);
         if kind <= 3 {
             plot = plot.y_range(1e-17, 10.0 * CEILING);
         }
@@ -286,7 +296,7 @@ fn report(rows: &[Row]) {
         "| scene | Hz | vs damped-springs f64: time, error | vs damped-springs f32: time, error | vs animato semi-implicit (f32): time, error | vs animato rk4: time, error | vs spring_damper (f32): time, error |"
     );
     println!("|---|---|---|---|---|---|---|");
-    for scene in values::ValueScene::all() {
+    for scene in ValueScene::all() {
         let (name, hz) = (scene.name(), scene.rate);
         let Some(ours64) = find(&name, hz, "stiffspring", "f64") else {
             continue;

@@ -2,7 +2,7 @@
 //!
 //! There is no analytic solution, so the error of every implementation is the worst
 //! distance of any particle from the independent f64 reference model
-//! (`tests/reference/network.rs`) run with the same update order, over the run, relative
+//! (`lab::reference::network`) run with the same update order, over the run, relative
 //! to the size of the network (the rope's length, the jelly's width).
 //!
 //! | implementation | what steps |
@@ -14,15 +14,15 @@
 //! | `baseline/explicit-euler` | the same forces with explicit Euler (positions move with the old velocity) |
 //!
 //! A Box2D-style soft step in a network whose springs are given as fractions `C_k`, `C_d`
-//! is the minimal Gauss-Seidel loop with the coefficients renamed (DESIGN.md §6), so it
+//! is the minimal Gauss-Seidel loop with the coefficients renamed (Box2D v3's `b2MakeSoft`
+//! gives `C_k = ω²h²/D` and `C_d = (2ζωh + ω²h²)/D` with `D = 1 + 2ζωh + ω²h²`), so it
 //! has no row of its own here.
 //!
 //! The time is reported per spring step: a scene step divided by the number of springs.
-#![allow(dead_code)]
 
-use crate::measure::Candidate;
-use crate::reference::network::Network;
-use crate::values::Real;
+use lab::measure::Candidate;
+use lab::pareto::Real;
+use lab::reference::network::Network;
 use std::hint::black_box;
 use stiffspring::length::{Approximate, ApproximateNewton, Exact, LengthKernel, Linearised};
 use stiffspring::scene::{ParticleId, Scene, SceneConfig, Stepper};

@@ -4,10 +4,69 @@
 //! value released from rest toward its target (2 Hz, ζ = 0.3, a 60 Hz display, 2 s),
 //! every implementation timed in this process, interleaved, for about a tenth of a second.
 
-use crate::measure::{self, Plan};
-use crate::pareto_values::{ValueScene, entries};
-use crate::table::{print, sci};
+use lab::measure::{self, Plan};
+use lab::pareto::{Entry, FREQUENCY, Runner, TARGET, ValueScene, entry, peer_entries};
+use lab::table::{print, sci};
 use std::time::Duration;
+use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
+
+/// A `SpringValue::<S, 1>` with the exact map, released from rest toward the target, rest
+/// detection off (and flung, for a fling scene): the library's runner, as in the pareto
+/// bench (`benches/pareto/values.rs`).
+struct Stiff<S: Scalar> {
+    start: SpringValue<S, 1>,
+    value: SpringValue<S, 1>,
+}
+
+impl<S: Scalar> Stiff<S> {
+    fn new(scene: &ValueScene) -> Option<Self> {
+        let tuning = Tuning::from_frequency(FREQUENCY, scene.zeta, scene.dt()).ok()?;
+        let never = RestThreshold::new(1e-300, 1e-300).ok()?;
+        let mut value = SpringValue::new([S::ZERO], tuning, scene.dt())
+            .ok()?
+            .with_rest_threshold(never);
+        value.set_target([S::from_f64(TARGET)]).ok()?;
+        if scene.velocity != 0.0 {
+            value.fling([S::from_f64(scene.velocity)]).ok()?;
+        }
+        Some(Stiff {
+            start: value.clone(),
+            value,
+        })
+    }
+}
+
+impl<S: Scalar> Runner for Stiff<S> {
+    #[inline(always)]
+    fn reset(&mut self) {
+        self.value.clone_from(&self.start);
+    }
+    #[inline(always)]
+    fn step(&mut self) {
+        self.value.step();
+    }
+    #[inline(always)]
+    fn offset(&self) -> f64 {
+        self.value.offset()[0].to_f64()
+    }
+}
+
+/// The library in each backend, then the peers and the baselines.
+fn entries(scene: &ValueScene) -> Vec<Entry> {
+    fn stiff<S: Scalar>(scene: &ValueScene) -> Option<Entry> {
+        Stiff::<S>::new(scene).map(|r| entry("stiffspring", S::NAME, scene, r))
+    }
+    let ours = [
+        stiff::<f64>(scene),
+        stiff::<f32>(scene),
+        stiff::<I32F32>(scene),
+        stiff::<I16F16>(scene),
+    ];
+    ours.into_iter()
+        .flatten()
+        .chain(peer_entries(scene))
+        .collect()
+}
 
 pub fn peers() {
     let scene = ValueScene {

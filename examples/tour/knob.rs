@@ -1,15 +1,29 @@
 //! The haptic knob: against SmartKnob-style PD detents, and a hand turning it.
 
-#[path = "../../tests/knob_support/mod.rs"]
-mod knob_support;
-
-use crate::plot::{Grid, Plot, Series};
-use crate::table::print;
-use knob_support::pd::{DETENTS, INERTIA, LIMIT, compare};
-use knob_support::{COUNT, Plant};
+use lab::knob::pd::{DETENTS, INERTIA, KnobLaw, LIMIT, compare};
+use lab::knob::{COUNT, Plant};
+use lab::plot::{Grid, Plot, Series};
+use lab::table::print;
 use std::f64::consts::TAU;
 use std::path::Path;
 use stiffspring::{Knob, KnobConfig};
+
+/// The library's knob for [`compare`]: detents `width` apart with small-signal stiffness
+/// `kp` at period `dt`, damping ratio 0.7, two counts of hysteresis, in `f32`.
+fn knob_law(dt: f64, width: f64, kp: f64) -> KnobLaw {
+    let config = KnobConfig::new(dt, INERTIA, LIMIT)
+        .detent_width(width)
+        .hysteresis(2.0 * COUNT);
+    let strength = kp / config.stiffness_at_full_strength().expect("valid config");
+    let mut knob =
+        Knob::<f32>::new(&config.detent_strength(strength), 0.0).expect("accepted strength");
+    let (_, cd) = knob.loop_coefficients()[0];
+    let law = move |angle: f64| {
+        let out = knob.update(angle as f32);
+        (f64::from(out.torque) * LIMIT, out.detent)
+    };
+    (Box::new(law), cd)
+}
 
 pub fn against_pd() {
     println!(
@@ -19,7 +33,7 @@ pub fn against_pd() {
     let mut rows = Vec::new();
     for rate in [1_000.0, 10_000.0] {
         for kp in [0.02, 0.1, 0.25] {
-            let c = compare(rate, kp);
+            let c = compare(rate, kp, knob_law);
             for (law, zeta, r) in [
                 ("SmartKnob PD", c.pd_zeta, &c.pd),
                 ("stiffspring", c.knob_zeta, &c.knob),
@@ -80,14 +94,14 @@ pub fn trace(dir: &Path) {
                 .y_label("angle [detent widths]")
                 .series(Series::line("rotor", angle))
                 .series(Series::line("detent index", detent).dashed())
-                .size(720.0, 260.0),
+                .size(720, 260),
         )
         .plot(
             Plot::new("torque")
                 .x_label("time [s]")
                 .y_label("torque [mN·m]")
                 .series(Series::line("commanded", torque))
-                .size(720.0, 260.0),
+                .size(720, 260),
         );
     let path = dir.join("knob_drag.svg");
     grid.write(&path).expect("write knob_drag.svg");

@@ -9,21 +9,10 @@
 //! crates) and writes SVG plots to `target/tour/`. Every number printed is computed by
 //! this run.
 
-#[path = "../support/plot.rs"]
-mod plot;
-#[path = "../../tests/reference/mod.rs"]
-mod reference;
-// The pareto bench's timing harness and 1D scenes, shared with `bench`.
-#[path = "../../benches/pareto/measure.rs"]
-mod measure;
-#[path = "../../benches/pareto/values.rs"]
-mod pareto_values;
-
 mod bench;
 mod knob;
 mod networks;
 mod rigid;
-mod table;
 mod values;
 
 use std::path::{Path, PathBuf};

@@ -1,11 +1,9 @@
 //! Networks: a rope swinging from a pinned end, and a jelly wobbling on a plate.
 
-#[path = "../scenes/rope.rs"]
-mod rope_scene;
-
-use crate::plot::render_frames;
-use crate::reference::network::Network;
-use crate::table::{print, sci};
+use firmware::scenes::rope as rope_scene;
+use lab::plot::render_frames;
+use lab::reference::network::Network;
+use lab::table::{print, sci};
 use std::path::Path;
 use stiffspring::length::{Exact, LengthKernel, Linearised};
 use stiffspring::scene::{ParticleId, Scene, SceneConfig, Stepper};
@@ -16,7 +14,7 @@ use stiffspring::{I16F16, I32F32, Scalar, Tuning};
 fn reference_rope() -> Network<2> {
     let c = rope_scene::COEFFICIENT;
     let mut net =
-        crate::reference::network::rope_2d(rope_scene::PARTICLES, rope_scene::SEGMENT, true, c, c);
+        lab::reference::network::rope_2d(rope_scene::PARTICLES, rope_scene::SEGMENT, true, c, c);
     net.gravity = rope_scene::GRAVITY;
     net
 }

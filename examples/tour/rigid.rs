@@ -1,6 +1,6 @@
 //! The article's stiffest spring, C_k = C_d = 1: at rest in one step, stopped in two.
 
-use crate::table::print;
+use lab::table::print;
 use stiffspring::{I16F16, I32F32, Scalar, SpringValue, Tuning};
 
 fn trace<S: Scalar>() -> Vec<String> {

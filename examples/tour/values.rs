@@ -1,8 +1,8 @@
 //! UI values springing to their targets: every platform preset, every backend, a fling.
 
-use crate::plot::{Grid, Plot, Series};
-use crate::reference;
-use crate::table::{print, sci};
+use lab::plot::{Grid, Plot, Series};
+use lab::reference;
+use lab::table::{print, sci};
 use std::path::Path;
 use stiffspring::{
     AndroidDamping, AndroidStiffness, I16F16, I32F32, Oscillator, ReactSpringPreset, RestThreshold,
@@ -196,7 +196,7 @@ pub fn presets(dir: &Path) {
     );
     let mut grid = Grid::new("UI presets released 100 px from their target").columns(3);
     for (_, plot) in panels {
-        grid = grid.plot(plot.size(460.0, 320.0));
+        grid = grid.plot(plot.size(460, 320));
     }
     let path = dir.join("presets.svg");
     grid.write(&path).expect("write presets.svg");

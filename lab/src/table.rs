@@ -1,0 +1,92 @@
+//! Tables: fixed-width for the terminal (the tour), Markdown (the reports) and CSV.
+
+/// Prints a header, a rule and the rows, each column right-aligned to its widest cell
+/// (the first column left-aligned).
+pub fn print(header: &[&str], rows: &[Vec<String>]) {
+    let columns = header.len();
+    let mut widths: Vec<usize> = header.iter().map(|h| h.chars().count()).collect();
+    for row in rows {
+        for (w, cell) in widths.iter_mut().zip(row) {
+            *w = (*w).max(cell.chars().count());
+        }
+    }
+    let line = |cells: Vec<String>| {
+        let mut out = String::new();
+        for (i, cell) in cells.iter().enumerate().take(columns) {
+            let pad = widths[i] - cell.chars().count();
+            if i == 0 {
+                out.push_str(cell);
+                out.push_str(&" ".repeat(pad));
+            } else {
+                out.push_str("  ");
+                out.push_str(&" ".repeat(pad));
+                out.push_str(cell);
+            }
+        }
+        println!("{}", out.trim_end());
+    };
+    line(header.iter().map(|h| h.to_string()).collect());
+    let total: usize = widths.iter().sum::<usize>() + 2 * (columns - 1);
+    println!("{}", "─".repeat(total));
+    for row in rows {
+        line(row.clone());
+    }
+}
+
+/// A compact scientific number: `3.2e-7`, or `0` for an exact zero.
+pub fn sci(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else {
+        format!("{v:.1e}")
+    }
+}
+
+/// A Markdown table: the header, the `|---|` rule, and the rows (cells as given).
+pub fn markdown(header: &[&str], rows: &[Vec<String>]) -> String {
+    let mut out = format!("| {} |\n", header.join(" | "));
+    out.push_str(&format!("|{}\n", "---|".repeat(header.len())));
+    for row in rows {
+        out.push_str(&format!("| {} |\n", row.join(" | ")));
+    }
+    out
+}
+
+/// CSV: the header line and one line per row. Cells are written as given; a cell with a
+/// comma, a quote or a line break is quoted (RFC 4180).
+pub fn csv(header: &[&str], rows: &[Vec<String>]) -> String {
+    fn cell(c: &str) -> String {
+        if c.contains([',', '"', '\n', '\r']) {
+            format!("\"{}\"", c.replace('"', "\"\""))
+        } else {
+            c.to_string()
+        }
+    }
+    let mut out = header.iter().map(|h| cell(h)).collect::<Vec<_>>().join(",");
+    out.push('\n');
+    for row in rows {
+        out.push_str(&row.iter().map(|c| cell(c)).collect::<Vec<_>>().join(","));
+        out.push('\n');
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{csv, markdown, sci};
+
+    #[test]
+    fn tables() {
+        let rows = vec![
+            vec!["a,b".to_string(), "1".into()],
+            vec!["c".into(), "2".into()],
+        ];
+        assert_eq!(csv(&["name", "n"], &rows), "name,n\n\"a,b\",1\nc,2\n");
+        assert_eq!(
+            markdown(&["name", "n"], &rows),
+            "| name | n |\n|---|---|\n| a,b | 1 |\n| c | 2 |\n"
+        );
+        assert_eq!(sci(0.0), "0");
+        assert_eq!(sci(3.21e-7), "3.2e-7");
+    }
+}
