@@ -18,18 +18,16 @@ pub const COUNT: f64 = core::f64::consts::TAU / 16384.0;
 /// The range: three quarters of a turn.
 pub const MAX: f64 = 0.75 * core::f64::consts::TAU;
 
-/// The knob of the scene: 20 detents of 0.1 N·m/rad (a 12 mN·m click), endstops of
-/// 0.25 N·m/rad, strengths taken from those stiffnesses.
+/// The knob of the scene: 20 detents of 0.1 N·m/rad (a 12 mN·m click), endstops adding
+/// 0.15 N·m/rad.
 pub fn config() -> KnobConfig {
-    let base = KnobConfig::new(DT, INERTIA, LIMIT).latency(Latency::OneStep);
-    // 0.30 N·m/rad at 1 kHz for this rotor; the strengths are fractions of it.
-    let full = base.stiffness_at_full_strength().unwrap_or(1.0);
-    base.endstops(0.0, MAX)
-        .endstop_strength(0.25 / full)
+    KnobConfig::new(1.0 / DT, INERTIA, LIMIT, 16384)
+        .latency(Latency::OneStep)
+        .endstops(0.0, MAX)
+        .endstop_stiffness(0.15)
         .detent_count(20)
-        .detent_strength(0.1 / full)
+        .detent_stiffness(0.1)
         .hysteresis(2.0 * COUNT)
-        .encoder_resolution(COUNT)
 }
 
 /// Periods of the scripted sweep.

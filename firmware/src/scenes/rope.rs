@@ -36,14 +36,14 @@ pub type Rope<S, L> = Scene<S, 2, PARTICLES, SPRINGS, L>;
 /// Builds the rope, at rest along the x axis.
 pub fn build<S: Scalar, L: LengthKernel<S>>() -> Result<(Rope<S, L>, [ParticleId; PARTICLES]), Error>
 {
-    let config = SceneConfig::new(DT)?.gravity(GRAVITY)?;
-    let mut rope = Scene::new(config)?;
-    let tuning = Tuning::from_coefficients(COEFFICIENT, COEFFICIENT)?;
+    let config = SceneConfig::new(DT)?.gravity(GRAVITY.map(S::from_f64))?;
+    let mut rope = Scene::new(config);
+    let tuning = Tuning::from_coefficients(COEFFICIENT, COEFFICIENT, DT)?;
     let mut ids = [rope.add_pinned([S::ZERO, S::ZERO])?; PARTICLES];
     for i in 1..PARTICLES {
         let x = S::from_f64(i as f64 * SEGMENT);
-        ids[i] = rope.add_particle([x, S::ZERO], MASS)?;
-        rope.add_spring(ids[i - 1], ids[i], SEGMENT, tuning)?;
+        ids[i] = rope.add_particle([x, S::ZERO], S::from_f64(MASS))?;
+        rope.add_spring(ids[i - 1], ids[i], S::from_f64(SEGMENT), &tuning)?;
     }
     Ok((rope, ids))
 }
