@@ -127,7 +127,7 @@ fn knob_golden_values_are_current() {
     // The sweep crosses every detent both ways, drives into both stops and saturates.
     let changes = detents.windows(2).filter(|w| w[0] != w[1]).count();
     assert!(changes >= 2 * 19, "{changes} detent changes");
-    assert!(torques.iter().any(|&t| t == 1.0) && torques.iter().any(|&t| t == -1.0));
+    assert!(torques.contains(&1.0) && torques.contains(&-1.0));
 
     let source = format!(
         "//! Golden values of the `knob` scene (`firmware/src/scenes/knob.rs`):\n\
