@@ -11,6 +11,7 @@
 //! | [`knob`] | a simulated rotor (exact zero-order hold, encoder) and SmartKnob-style PD detents |
 //! | [`measure`] | interleaved timing of several candidates on a noisy machine |
 //! | [`pareto`] | the 1D value scenes, the peer crates and textbook baselines they are timed against |
+//! | [`xpbd`] | XPBD with small steps, and network models in physical units with their fine-step reference |
 //! | [`plot`] | SVG charts on plotters |
 //! | [`table`] | terminal, Markdown and CSV tables |
 //! | [`golden`] | golden values kept as Rust source: render, compare, regenerate |
@@ -24,3 +25,4 @@ pub mod plot;
 pub mod reference;
 pub mod rng;
 pub mod table;
+pub mod xpbd;
