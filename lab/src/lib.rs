@@ -12,6 +12,7 @@
 //! | [`measure`] | interleaved timing of several candidates on a noisy machine |
 //! | [`pareto`] | the 1D value scenes, the peer crates and textbook baselines they are timed against |
 //! | [`plot`] | SVG charts on plotters |
+//! | [`precision`] | the precision study of issue 10: every candidate representation of one spring against the analytic oscillator |
 //! | [`table`] | terminal, Markdown and CSV tables |
 //! | [`golden`] | golden values kept as Rust source: render, compare, regenerate |
 
@@ -21,6 +22,7 @@ pub mod linear;
 pub mod measure;
 pub mod pareto;
 pub mod plot;
+pub mod precision;
 pub mod reference;
 pub mod rng;
 pub mod table;
