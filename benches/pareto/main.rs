@@ -9,13 +9,15 @@
 //!
 //! Sections (`--only` takes a comma-separated list): `values` (the 1D scenes against the
 //! peers), `targets` (the host cost targets of issue 12, `targets.rs`), `networks`,
-//! `xpbd` (XPBD with small steps against stiffspring at equal cost, `xpbd.rs`), `knob`.
+//! `xpbd` (XPBD with small steps against stiffspring at equal cost, `xpbd.rs`), `knob`,
+//! `precision` (the error-against-cost table of issue 10, `precision.rs`).
 //!
 //! Writes `target/pareto/results.csv` (columns
 //! `scene,implementation,backend,step_hz,ns_per_step,max_rel_error`),
 //! `target/pareto/pareto.svg` (error against time per step, log-log, one panel per scene
-//! and step rate), `target/pareto/targets.csv`, `target/pareto/xpbd.csv` and
-//! `target/pareto/xpbd.svg`, and prints the tables of `docs/benchmarks.md`.
+//! and step rate), `target/pareto/targets.csv`, `target/pareto/xpbd.csv`,
+//! `target/pareto/xpbd.svg` and `target/pareto/precision.csv`, and prints the tables of
+//! `docs/benchmarks.md`.
 //!
 //! Instruction counts: where Valgrind is installed, the bench runs itself again under
 //! callgrind once per counted case (`--count <section> <case>…`, a mode for that only),
@@ -23,10 +25,11 @@
 //! loop and nothing else (see `lab::measure::callgrind` for the exact command). The
 //! callgrind output files are kept in `target/pareto/callgrind/`.
 //!
-//! - `ns_per_step` is the median over interleaved batches (`lab::measure`) of one value
-//!   step, one knob update, or one spring of a network step (a scene step divided by its
-//!   springs). Every implementation of a scene is timed in the same process, round-robin,
-//!   so the ratios hold on a noisy machine; absolute numbers move from run to run.
+//! - Times are the fastest of interleaved batches (`lab::measure::fastest`) of one value
+//!   step, one knob update, one spring of a network step (a scene step divided by its
+//!   springs), one value step of a batch, or one frame. Every implementation of a scene
+//!   is timed in the same process, round-robin, so the ratios hold on a noisy machine;
+//!   absolute numbers move from run to run.
 //! - `max_rel_error` is the worst deviation over the run from the analytic solution
 //!   (1D scenes, `values.rs` and `lab::pareto`), from the f64 reference model (networks,
 //!   `networks.rs`), or
@@ -34,6 +37,7 @@
 
 mod knob;
 mod networks;
+mod precision;
 mod targets;
 mod values;
 mod xpbd;
@@ -77,7 +81,7 @@ fn time(pending: Vec<Pending>, plan: Plan) -> Vec<Row> {
             )
         })
         .unzip();
-    let ns = measure::medians(&mut candidates, plan);
+    let ns = measure::fastest(&mut candidates, plan);
     meta.into_iter()
         .zip(ns)
         .map(
@@ -91,6 +95,38 @@ fn time(pending: Vec<Pending>, plan: Plan) -> Vec<Row> {
             },
         )
         .collect()
+}
+
+/// Instructions per step of every implementation of the 1D scenes released from rest at
+/// 1 kHz (2000 steps per run, so the reset between runs is amortised), by callgrind:
+/// `(scene, implementation, backend, instructions)`.
+fn value_counts() -> Vec<(String, String, String, f64)> {
+    let mut out = Vec::new();
+    for (s, scene) in ValueScene::all().iter().enumerate() {
+        if scene.rate != 1000.0 || scene.velocity != 0.0 {
+            continue;
+        }
+        for (e, entry) in values::entries(scene).iter().enumerate() {
+            if let Some(n) = count(&["values".into(), s.to_string(), e.to_string()]) {
+                out.push((
+                    scene.name(),
+                    entry.implementation.to_string(),
+                    entry.backend.to_string(),
+                    n as f64 / scene.steps() as f64,
+                ));
+            }
+        }
+    }
+    out
+}
+
+fn value_counts_report(counts: &[(String, String, String, f64)]) {
+    println!("\n1D value step at 1 kHz: host instructions per step (callgrind)");
+    println!("| scene | implementation | backend | instructions/step |");
+    println!("|---|---|---|---|");
+    for (scene, imp, backend, n) in counts {
+        println!("| {scene} | {imp} | {backend} | {n:.1} |");
+    }
 }
 
 fn value_rows(plan: Plan) -> Vec<Row> {
@@ -296,7 +332,7 @@ fn ratio(a: f64, b: f64) -> String {
     format!("{:.2}×", a / b)
 }
 
-/// The tables of ratios against each peer, for the terminal (and BENCHMARKS.md).
+/// The tables of ratios against each peer, for the terminal (and `docs/benchmarks.md`).
 fn report(rows: &[Row]) {
     let find = |scene: &str, hz: f64, imp: &str, backend: &str| {
         rows.iter().find(|r| {
@@ -424,6 +460,15 @@ fn child(args: &[String]) {
                 &mut xpbd::Count(model.frames),
             );
         }
+        "precision" => precision::count(index(1), index(2)),
+        "values" => {
+            let scene = ValueScene::all()[index(1)];
+            let mut entries = values::entries(&scene);
+            let entry = &mut entries[index(2)];
+            measure::counted(&mut || {
+                (entry.candidate.batch)(1);
+            });
+        }
         other => panic!("no countable section {other}"),
     }
 }
@@ -462,7 +507,7 @@ fn target_rows(plan: Plan, counting: bool) -> Vec<TargetRow> {
             .into_iter()
             .map(|p| ((p.implementation, p.bytes, p.error), p.candidate))
             .unzip();
-        let ns = measure::medians(&mut candidates, plan);
+        let ns = measure::fastest(&mut candidates, plan);
         for (i, ((implementation, bytes, error), ns)) in meta.into_iter().zip(ns).enumerate() {
             let instructions = if counting {
                 count(&["targets".into(), s.to_string(), i.to_string()])
@@ -549,12 +594,13 @@ fn targets_report(rows: &[TargetRow]) {
             })
     };
     let range = |(lo, hi): (f64, f64), digits: usize| {
+        let (a, b) = (format!("{lo:.digits$}"), format!("{hi:.digits$}"));
         if lo > hi {
             "–".to_string()
-        } else if lo == hi {
-            format!("{lo:.digits$}")
+        } else if a == b {
+            a
         } else {
-            format!("{lo:.digits$}–{hi:.digits$}")
+            format!("{a}–{b}")
         }
     };
     let versus = |imp: &str, base: &str, f: &dyn Fn(&TargetRow, &TargetRow) -> f64| {
@@ -634,10 +680,10 @@ fn xpbd_rows(plan: Plan, counting: bool) -> (Vec<XpbdRow>, Vec<(&'static str, f6
                     )
                 })
                 .unzip();
-            let ns = measure::medians(&mut candidates, plan);
+            let ns = measure::fastest(&mut candidates, plan);
             for ((index, implementation, substeps, clamped, error), ns) in meta.into_iter().zip(ns)
             {
-                let instructions = if counting && backend == "f32" {
+                let instructions = if counting {
                     count(&[
                         "xpbd".into(),
                         m.to_string(),
@@ -696,9 +742,20 @@ fn xpbd_csv(rows: &[XpbdRow]) -> String {
     )
 }
 
-/// The cost of a row: callgrind's instructions where counted, else the time.
-fn xpbd_cost(r: &XpbdRow) -> f64 {
-    r.instructions_per_frame.unwrap_or(r.ns_per_frame)
+/// The cost of a row by `metric`: callgrind's instructions per frame (`None` if not
+/// counted) or the time of a frame.
+fn xpbd_cost(r: &XpbdRow, metric: Metric) -> Option<f64> {
+    match metric {
+        Metric::Instructions => r.instructions_per_frame,
+        Metric::Time => Some(r.ns_per_frame),
+    }
+}
+
+/// What "equal cost" means.
+#[derive(Clone, Copy, PartialEq)]
+enum Metric {
+    Instructions,
+    Time,
 }
 
 /// `curve`'s error at `cost`, interpolated log-log between the two points around it
@@ -715,52 +772,40 @@ fn at_cost(curve: &[(f64, f64)], cost: f64) -> Option<f64> {
 }
 
 fn xpbd_svg(rows: &[XpbdRow]) -> String {
+    let counted = rows.iter().any(|r| r.instructions_per_frame.is_some());
+    let (metric, unit) = if counted {
+        (Metric::Instructions, "instructions per frame (callgrind)")
+    } else {
+        (Metric::Time, "ns per frame")
+    };
     let mut grid = Grid::new(
-        "XPBD with small steps against stiffspring: worst error against cost per frame (log-log, one run)",
+        "XPBD with small steps against stiffspring: worst error against cost per frame (log-log, one run; * = springs clamped to the network limit)",
     )
     .columns(2);
     for scene in xpbd::MODELS {
         for backend in ["f32", "f64"] {
-            let counted =
-                backend == "f32" && rows.iter().any(|r| r.instructions_per_frame.is_some());
             let mut plot = Plot::new(format!("{scene}, {backend}"))
-                .x_label(if counted {
-                    "instructions per frame"
-                } else {
-                    "ns per frame"
-                })
+                .x_label(unit)
                 .y_label("max relative error")
                 .log_x()
                 .log_y()
                 .size(560, 400);
             for imp in ["xpbd", "stiffspring/exact", "stiffspring/raw"] {
-                let points: Vec<&XpbdRow> = rows
+                let points: Vec<(f64, f64, String)> = rows
                     .iter()
                     .filter(|r| r.scene == scene && r.backend == backend && r.implementation == imp)
                     .filter(|r| r.error.is_finite() && r.error < CEILING)
-                    .collect();
-                let labels: Vec<String> = points
-                    .iter()
-                    .map(|r| {
-                        if r.clamped > 0 {
+                    .filter_map(|r| {
+                        let label = if r.clamped > 0 {
                             format!("{}*", r.substeps)
                         } else {
                             r.substeps.to_string()
-                        }
+                        };
+                        Some((xpbd_cost(r, metric)?, r.error, label))
                     })
                     .collect();
-                let series = Series::line(
-                    imp,
-                    points.iter().map(|r| {
-                        let cost = if counted {
-                            xpbd_cost(r)
-                        } else {
-                            r.ns_per_frame
-                        };
-                        (cost, r.error)
-                    }),
-                )
-                .labels(labels);
+                let series = Series::line(imp, points.iter().map(|p| (p.0, p.1)))
+                    .labels(points.iter().map(|p| p.2.clone()));
                 plot = plot.series(series);
             }
             grid = grid.plot(plot);
@@ -799,54 +844,157 @@ fn xpbd_report(rows: &[XpbdRow], references: &[(&'static str, f64)]) {
         );
     }
     println!(
-        "\nAt equal cost: each XPBD point against stiffspring's error at the same cost, interpolated log-log (instructions in f32, time in f64)"
+        "\nAt equal cost: each XPBD point against stiffspring's error at the same cost, interpolated log-log between its substep counts"
     );
     println!(
-        "| scene | backend | XPBD substeps | cost | XPBD error | stiffspring/exact error | stiffspring/raw error | best |"
+        "| scene | backend | cost | XPBD substeps | cost per frame | XPBD error | stiffspring/exact error | stiffspring/raw error | best |"
     );
-    println!("|---|---|---|---|---|---|---|---|");
-    for scene in xpbd::MODELS {
-        for backend in ["f32", "f64"] {
-            let curve = |imp: &str| -> Vec<(f64, f64)> {
-                let mut c: Vec<(f64, f64)> = rows
-                    .iter()
-                    .filter(|r| r.scene == scene && r.backend == backend && r.implementation == imp)
-                    .filter(|r| r.error.is_finite())
-                    .map(|r| (xpbd_cost(r), r.error))
-                    .collect();
-                c.sort_by(|a, b| a.0.total_cmp(&b.0));
-                c
-            };
-            let (exact, raw) = (curve("stiffspring/exact"), curve("stiffspring/raw"));
-            for r in rows
-                .iter()
-                .filter(|r| r.scene == scene && r.backend == backend && r.implementation == "xpbd")
-            {
-                let cost = xpbd_cost(r);
-                let (e, w) = (at_cost(&exact, cost), at_cost(&raw, cost));
-                let cell = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.1e}"));
-                // A winner only where stiffspring was measured at this cost.
-                let best = match (e, w) {
-                    (Some(e), Some(w)) => [
-                        ("xpbd", r.error),
-                        ("stiffspring/exact", e),
-                        ("stiffspring/raw", w),
-                    ]
-                    .into_iter()
-                    .min_by(|a, b| a.1.total_cmp(&b.1))
-                    .map_or("–", |b| b.0),
-                    _ => "–",
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for metric in [Metric::Instructions, Metric::Time] {
+        let unit = match metric {
+            Metric::Instructions => "instructions",
+            Metric::Time => "time (ns)",
+        };
+        for scene in xpbd::MODELS {
+            for backend in ["f32", "f64"] {
+                let here = |r: &&XpbdRow| r.scene == scene && r.backend == backend;
+                let curve = |imp: &str| -> Vec<(f64, f64)> {
+                    let mut c: Vec<(f64, f64)> = rows
+                        .iter()
+                        .filter(here)
+                        .filter(|r| r.implementation == imp && r.error.is_finite())
+                        .filter_map(|r| Some((xpbd_cost(r, metric)?, r.error)))
+                        .collect();
+                    c.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    c
                 };
-                println!(
-                    "| {scene} | {backend} | {} | {:.0} | {:.1e} | {} | {} | {best} |",
-                    r.substeps,
-                    cost,
-                    r.error,
-                    cell(e),
-                    cell(w),
-                );
+                let (exact, raw) = (curve("stiffspring/exact"), curve("stiffspring/raw"));
+                for r in rows
+                    .iter()
+                    .filter(here)
+                    .filter(|r| r.implementation == "xpbd")
+                {
+                    let Some(cost) = xpbd_cost(r, metric) else {
+                        continue;
+                    };
+                    let (e, w) = (at_cost(&exact, cost), at_cost(&raw, cost));
+                    let cell = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.1e}"));
+                    // A winner only where stiffspring was measured at this cost.
+                    let best = match (e, w) {
+                        (Some(e), Some(w)) => [
+                            ("xpbd", r.error),
+                            ("stiffspring/exact", e),
+                            ("stiffspring/raw", w),
+                        ]
+                        .into_iter()
+                        .min_by(|a, b| a.1.total_cmp(&b.1))
+                        .map_or("–", |b| b.0),
+                        _ => "–",
+                    };
+                    println!(
+                        "| {scene} | {backend} | {unit} | {} | {:.0} | {:.1e} | {} | {} | {best} |",
+                        r.substeps,
+                        cost,
+                        r.error,
+                        cell(e),
+                        cell(w),
+                    );
+                }
             }
         }
+    }
+}
+
+fn precision_rows(plan: Plan, quick: bool, counting: bool) -> Vec<precision::Row> {
+    eprintln!("  precision: the study's grid at 60 Hz, 1 kHz and 10 kHz");
+    let runs = precision::runs(quick);
+    let mut rows = Vec::new();
+    for (b, &backend) in precision::BACKENDS.iter().enumerate() {
+        eprintln!("  precision: {} cost", backend.name());
+        let all = lab::precision::candidates(backend);
+        let mut candidates: Vec<Candidate> = all
+            .iter()
+            .map(|&c| precision::candidate(backend, c))
+            .collect();
+        candidates.push(precision::library(backend));
+        let ns = measure::fastest(&mut candidates, plan);
+        for (c, ns) in ns.into_iter().enumerate() {
+            let (candidate, (errors, rejected)) = match all.get(c) {
+                Some(&cand) => (cand.name(), precision::errors(&runs, backend, cand)),
+                None => ("kept (library kernel)".to_string(), ([None; 3], 0)),
+            };
+            let instructions = if counting {
+                count(&["precision".into(), b.to_string(), c.to_string()])
+                    .map(|n| n as f64 / precision::STEPS as f64)
+            } else {
+                None
+            };
+            rows.push(precision::Row {
+                backend: backend.name(),
+                candidate,
+                errors,
+                rejected,
+                instructions,
+                ns,
+            });
+        }
+    }
+    rows
+}
+
+fn precision_csv(rows: &[precision::Row]) -> String {
+    let e = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.3e}"));
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.backend.to_string(),
+                r.candidate.clone(),
+                e(r.errors[0]),
+                e(r.errors[1]),
+                e(r.errors[2]),
+                r.rejected.to_string(),
+                r.instructions.map_or(String::new(), |i| format!("{i:.2}")),
+                format!("{:.3}", r.ns),
+            ]
+        })
+        .collect();
+    lab::table::csv(
+        &[
+            "backend",
+            "candidate",
+            "max_rel_error_60hz",
+            "max_rel_error_1khz",
+            "max_rel_error_10khz",
+            "rejected_starts",
+            "host_instructions_per_step",
+            "host_ns_per_step",
+        ],
+        &cells,
+    )
+}
+
+fn precision_report(rows: &[precision::Row]) {
+    println!(
+        "\nPrecision (issue 10): worst error over the study's grid at each rate, and the host cost of a step of the study's model"
+    );
+    println!(
+        "| backend | representation | 60 Hz | 1 kHz | 10 kHz | rejected starts | host instructions/step | host ns/step |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    let e = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.1e}"));
+    for r in rows {
+        println!(
+            "| {} | `{}` | {} | {} | {} | {} | {} | {:.2} |",
+            r.backend,
+            r.candidate,
+            e(r.errors[0]),
+            e(r.errors[1]),
+            e(r.errors[2]),
+            r.rejected,
+            r.instructions.map_or("–".into(), |i| format!("{i:.1}")),
+            r.ns
+        );
     }
 }
 
@@ -881,7 +1029,7 @@ fn main() {
         )
     };
     let counting = options.count && !options.quick;
-    eprintln!("pareto: measuring (interleaved medians; ratios hold, absolute ns move)");
+    eprintln!("pareto: measuring (interleaved, fastest batch; ratios hold, absolute ns move)");
     let dir = out_dir();
     std::fs::create_dir_all(&dir).expect("create target/pareto");
     let mut written = Vec::new();
@@ -902,6 +1050,9 @@ fn main() {
         written.extend(["results.csv", "pareto.svg"]);
         report(&rows);
     }
+    if counting && options.runs("values") {
+        value_counts_report(&value_counts());
+    }
     if options.runs("xpbd") {
         let (rows, references) = xpbd_rows(network_plan, counting);
         std::fs::write(dir.join("xpbd.csv"), xpbd_csv(&rows)).expect("write xpbd.csv");
@@ -909,8 +1060,15 @@ fn main() {
         written.extend(["xpbd.csv", "xpbd.svg"]);
         xpbd_report(&rows, &references);
     }
+    if options.runs("precision") {
+        let rows = precision_rows(value_plan, options.quick, counting);
+        std::fs::write(dir.join("precision.csv"), precision_csv(&rows))
+            .expect("write precision.csv");
+        written.push("precision.csv");
+        precision_report(&rows);
+    }
     if options.runs("targets") {
-        let rows = target_rows(network_plan, counting);
+        let rows = target_rows(value_plan, counting);
         std::fs::write(dir.join("targets.csv"), targets_csv(&rows)).expect("write targets.csv");
         written.push("targets.csv");
         targets_report(&rows);

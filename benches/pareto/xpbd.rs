@@ -19,7 +19,7 @@
 //! (`lab::reference::network`) run at [`REFERENCE_SUBSTEPS`] steps per frame (whose own
 //! error, the distance to the run at half that step, is printed beside it), at every
 //! frame, relative to the rope's length or the jelly's width. The cost is the time of a
-//! frame (interleaved medians) and, in `f32`, callgrind's instructions per frame.
+//! frame (the fastest of interleaved batches) and callgrind's instructions per frame.
 
 use lab::measure::Candidate;
 use lab::pareto::Real;

@@ -3,8 +3,9 @@
 //!
 //! Interleaving is what makes the *ratios* hold when the machine is shared: a burst of
 //! load from another process slows the batches that run during it, which belong to every
-//! candidate in turn, and the median of each candidate then drops the slowed batches.
-//! Absolute nanoseconds still move from run to run; compare ratios from one run.
+//! candidate in turn, and the median (or the fastest batch) of each candidate then drops
+//! the slowed batches. Absolute nanoseconds still move from run to run; compare ratios
+//! from one run.
 //!
 //! Instruction counts: [`callgrind`] runs a program under Valgrind's callgrind and
 //! counts the instructions executed inside [`counted`] only (what a closure passed to it
@@ -77,6 +78,24 @@ pub struct Plan {
 /// and then times single runs to choose how many runs fill a batch. The rounds then visit
 /// the candidates in a rotated order, so that no candidate always follows the same one.
 pub fn medians(candidates: &mut [Candidate<'_>], plan: Plan) -> Vec<f64> {
+    samples(candidates, plan).into_iter().map(median).collect()
+}
+
+/// The fastest batch of every candidate, in nanoseconds per unit step, measured
+/// interleaved as [`medians`] does.
+///
+/// On a machine shared with other jobs, a batch can only be slowed down by them: the
+/// fastest batch is the least disturbed one, and it moves far less from run to run than
+/// the median when the load is heavy (more runnable jobs than cores).
+pub fn fastest(candidates: &mut [Candidate<'_>], plan: Plan) -> Vec<f64> {
+    samples(candidates, plan)
+        .into_iter()
+        .map(|v| v.into_iter().fold(f64::NAN, f64::min))
+        .collect()
+}
+
+/// Every batch's nanoseconds per unit step, per candidate.
+fn samples(candidates: &mut [Candidate<'_>], plan: Plan) -> Vec<Vec<f64>> {
     let n = candidates.len();
     let mut runs = vec![1usize; n];
     for (c, r) in candidates.iter_mut().zip(runs.iter_mut()) {
@@ -98,7 +117,7 @@ pub fn medians(candidates: &mut [Candidate<'_>], plan: Plan) -> Vec<f64> {
             samples[i].push(ns / units);
         }
     }
-    samples.into_iter().map(median).collect()
+    samples
 }
 
 /// The median (the mean of the two middle values for an even count).
