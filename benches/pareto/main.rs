@@ -778,10 +778,9 @@ fn xpbd_svg(rows: &[XpbdRow]) -> String {
     } else {
         (Metric::Time, "ns per frame")
     };
-    let mut grid = Grid::new(
-        "XPBD with small steps against stiffspring: worst error against cost per frame (log-log, one run; * = springs clamped to the network limit)",
-    )
-    .columns(2);
+    let mut grid =
+        Grid::new("XPBD (small steps) against stiffspring: worst error against cost per frame")
+            .columns(2);
     for scene in xpbd::MODELS {
         for backend in ["f32", "f64"] {
             let mut plot = Plot::new(format!("{scene}, {backend}"))
@@ -791,21 +790,13 @@ fn xpbd_svg(rows: &[XpbdRow]) -> String {
                 .log_y()
                 .size(560, 400);
             for imp in ["xpbd", "stiffspring/exact", "stiffspring/raw"] {
-                let points: Vec<(f64, f64, String)> = rows
+                let points: Vec<(f64, f64)> = rows
                     .iter()
                     .filter(|r| r.scene == scene && r.backend == backend && r.implementation == imp)
                     .filter(|r| r.error.is_finite() && r.error < CEILING)
-                    .filter_map(|r| {
-                        let label = if r.clamped > 0 {
-                            format!("{}*", r.substeps)
-                        } else {
-                            r.substeps.to_string()
-                        };
-                        Some((xpbd_cost(r, metric)?, r.error, label))
-                    })
+                    .filter_map(|r| Some((xpbd_cost(r, metric)?, r.error)))
                     .collect();
-                let series = Series::line(imp, points.iter().map(|p| (p.0, p.1)))
-                    .labels(points.iter().map(|p| p.2.clone()));
+                let series = Series::line(imp, points);
                 plot = plot.series(series);
             }
             grid = grid.plot(plot);
