@@ -1,6 +1,6 @@
 //! Live: run time against error of the 1D scene, stiffspring beside the peer crates.
 //!
-//! The short version of `cargo bench --bench pareto` (see BENCHMARKS.md): one scene, a
+//! The short version of `cargo bench --bench pareto` (see `docs/benchmarks.md`): one scene, a
 //! value released from rest toward its target (2 Hz, ζ = 0.3, a 60 Hz display, 2 s),
 //! every implementation timed in this process, interleaved, for about a tenth of a second.
 
