@@ -1,0 +1,62 @@
+//! Starter: a rope pinned at one end, its other end dragged by a pointer through a drag
+//! handle (a zero-length spring to a pinned point that follows the pointer), then let go.
+//! `cargo run --example rope` draws it on a simulated display and writes
+//! `target/tour/rope.gif`.
+use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle};
+use firmware::display::Display;
+use stiffspring::Tuning;
+use stiffspring::scene::{Scene, SceneConfig};
+
+const DT: f64 = 1.0 / 240.0; // four physics steps per 60 Hz frame
+fn pixel([x, y]: [f32; 2]) -> Point {
+    Point::new((x * 100.0) as i32, 160 - (y * 100.0) as i32) // 100 px per metre, y up
+}
+
+pub fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut display = Display::new(); // the simulated 240×160 panel: your driver goes here
+    let mut rope = Scene::<f32, 2, 13, 12>::new(SceneConfig::new(DT)?.gravity([0.0, -9.81])?);
+    let link = Tuning::from_coefficients(0.3, 0.3, DT)?; // within the network limit of ¾
+    let mut ids = vec![rope.add_pinned([0.5, 1.3])?];
+    for i in 1..12 {
+        ids.push(rope.add_particle([0.5 + 0.1 * i as f32, 1.3], 0.02)?); // 20 g each
+        rope.add_spring(ids[i - 1], ids[i], 0.1, &link)?;
+    }
+    let tip = ids[11];
+    let drag = Tuning::from_coefficients(0.5, 0.5, DT)?; // a firm grip, within the limit too
+    let (handle, _) = rope.add_anchor(rope.position(tip)?, tip, 0.0, &drag)?;
+    for frame in 0..240 {
+        let t = frame as f32 / 60.0;
+        if t < 2.0 {
+            let wiggle = 0.3 * (std::f32::consts::TAU * 1.5 * t).sin();
+            rope.set_position(handle, [1.6 - 0.4 * t, 1.3 - 0.45 * t + wiggle])?; // the pointer
+        } else if frame == 120 {
+            rope.remove_particle(handle)?; // let go: the handle and its spring are gone
+        }
+        for _ in 0..4 {
+            let _ = rope.step(); // reports what moved and which islands fell asleep
+        }
+        display.clear(Rgb565::BLACK)?;
+        for pair in ids.windows(2) {
+            Line::new(
+                pixel(rope.position(pair[0])?),
+                pixel(rope.position(pair[1])?),
+            )
+            .into_styled(PrimitiveStyle::with_stroke(Rgb565::CSS_LIGHT_GREEN, 2))
+            .draw(&mut display)?;
+        }
+        if frame < 120 {
+            Circle::with_center(pixel(rope.position(handle)?), 9)
+                .into_styled(PrimitiveStyle::with_stroke(Rgb565::WHITE, 1))
+                .draw(&mut display)?;
+        }
+        display.show();
+    }
+    println!(
+        "rope: tip at {:?} m; wrote {}",
+        rope.position(tip)?,
+        display.save_gif("rope")?.display()
+    );
+    Ok(())
+}
