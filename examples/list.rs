@@ -20,21 +20,18 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
     for i in 0..200 {
         rows.push((i, list.push([i as f32 * ROW])?));
     }
-    let mut scroll = 0.0;
     for frame in 0..150 {
         if frame == 10 {
-            let (_, deleted) = rows.remove(1); // delete the second row: the rest move up
+            let (_, deleted) = rows.remove(1); // delete the second row: the rows below close the gap
             list.remove(deleted);
         }
-        if frame == 70 {
-            scroll = 3.0 * ROW; // scroll down by three rows
-        }
         if frame == 10 || frame == 70 {
+            let scroll = if frame == 70 { 3.0 * ROW } else { 0.0 }; // then scroll by three rows
             for (slot, (_, index)) in rows.iter().enumerate() {
                 list.set_target(*index, [slot as f32 * ROW - scroll]);
             }
         }
-        let motion = list.step();
+        let motion = list.step(); // how many rows moved and settled: what to redraw
         if motion.settled > 0 {
             println!(
                 "list: frame {frame}: {} rows settled, {} moving",
@@ -43,10 +40,8 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         display.clear(Rgb565::BLACK)?;
         for (label, index) in &rows {
-            let Some([y]) = list.position(*index) else {
-                continue;
-            };
-            if (-ROW..160.0).contains(&y) {
+            let y = list.position(*index).map_or(-ROW, |[y]| y);
+            if (-ROW + 1.0..160.0).contains(&y) {
                 let top = Point::new(8, y.round() as i32 + 2);
                 Rectangle::new(top, Size::new(224, ROW as u32 - 4))
                     .into_styled(PrimitiveStyle::with_fill(Rgb565::CSS_STEEL_BLUE))
