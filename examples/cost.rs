@@ -320,6 +320,8 @@ fn distance_2d<S: Scalar, L: LengthKernel<S>>() -> Option<SceneStep<S, 2, 9, CHA
 
 /// The same rope pulled by a drag handle: the 2D point spring (zero rest length) of a
 /// pinned handle on every particle. Per spring.
+// Measured on the M4F and the host only (see `measure_scenes`).
+#[cfg_attr(all(target_os = "none", not(target_abi = "eabihf")), allow(dead_code))]
 fn point_2d<S: Scalar>() -> Option<SceneStep<S, 2, 16, CHAIN, Exact>> {
     let config = SceneConfig::new(CHAIN_DT).ok()?.no_sleep();
     let mut scene = Scene::<S, 2, 16, CHAIN, Exact>::new(config);
@@ -337,6 +339,8 @@ fn point_2d<S: Scalar>() -> Option<SceneStep<S, 2, 16, CHAIN, Exact>> {
 
 /// The angular spring: a free chain of 9 bodies and 8 springs, wound alternately. Per
 /// spring, the bodies' integration included.
+// Measured on the M4F and the host only (see `measure_scenes`).
+#[cfg_attr(all(target_os = "none", not(target_abi = "eabihf")), allow(dead_code))]
 fn angular<S: Scalar>() -> Option<SceneStep<S, 1, 9, CHAIN, Angle>> {
     let config = SceneConfig::new(CHAIN_DT).ok()?.no_sleep();
     let mut scene = AngularScene::<S, 9, CHAIN, Angle>::new(config);
