@@ -362,24 +362,36 @@ fn angular<S: Scalar>() -> Option<SceneStep<S, 1, 9, CHAIN, Angle>> {
 /// [`distance_2d`] written by hand over plain arrays, with what the library's step must
 /// keep (each spring's rest length and body weights read from memory, the zero-length
 /// guard, the integration of every particle) and nothing else: no index lists, no
-/// bounds checks, no position remainders. Per spring.
+/// bounds checks. Per spring.
+///
+/// Two of the library's safety and accuracy features can be switched on, to measure what
+/// each costs without the rest of the bookkeeping: `GUARD`, the network bound tested on
+/// `|x + u| + |u|` of every particle (as the library's fast path does, with `abs` as
+/// `vabs`), and `CARRY`, positions that carry their rounding remainder (the separation
+/// reads it, the integration keeps it by a two-sum).
 #[cfg(target_abi = "eabihf")]
-struct FloorRope {
+struct FloorRope<const GUARD: bool, const CARRY: bool> {
     k: f32,
     d: f32,
     rest: [f32; CHAIN],
     weights: [(f32, f32); CHAIN],
     x: [[f32; 2]; CHAIN + 1],
+    r: [[f32; 2]; CHAIN + 1],
     u: [[f32; 2]; CHAIN + 1],
 }
 #[cfg(target_abi = "eabihf")]
-impl Bench for FloorRope {
+impl<const GUARD: bool, const CARRY: bool> Bench for FloorRope<GUARD, CARRY> {
     #[inline(always)]
     fn step(&mut self) {
         let (k, d) = (self.k, self.d);
         for i in 0..CHAIN {
             let (a, b) = (self.x[i], self.x[i + 1]);
-            let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+            let (mut dx, mut dy) = (b[0] - a[0], b[1] - a[1]);
+            if CARRY {
+                let (ra, rb) = (self.r[i], self.r[i + 1]);
+                dx += rb[0] - ra[0];
+                dy += rb[1] - ra[1];
+            }
             let length = vsqrt(dx * dx + dy * dy);
             let inverse = if length > 0.0 { 1.0 / length } else { 0.0 };
             let (nx, ny) = (dx * inverse, dy * inverse);
@@ -391,9 +403,29 @@ impl Bench for FloorRope {
             self.u[i] = [ua[0] + da * nx, ua[1] + da * ny];
             self.u[i + 1] = [ub[0] + db * nx, ub[1] + db * ny];
         }
-        for (x, u) in self.x.iter_mut().zip(&self.u) {
-            x[0] += u[0];
-            x[1] += u[1];
+        for ((x, r), u) in self.x.iter_mut().zip(self.r.iter_mut()).zip(&self.u) {
+            let (mut next, mut rest) = (*x, *r);
+            for c in 0..2 {
+                if CARRY {
+                    // Two-sum of x + (u + r): the sum and its exact rounding error.
+                    let y = u[c] + r[c];
+                    let s = x[c] + y;
+                    let t = s - x[c];
+                    (next[c], rest[c]) = (s, (x[c] - (s - t)) + (y - t));
+                } else {
+                    next[c] = x[c] + u[c];
+                }
+            }
+            if GUARD {
+                let total = u[0].abs() + next[0].abs() + u[1].abs() + next[1].abs();
+                let within = total <= 1e18; // false for NaN too
+                if !within {
+                    // The library clamps here; this rope never comes near the bound.
+                    continue;
+                }
+            }
+            *x = next;
+            *r = rest;
         }
     }
     fn per_step(&self) -> u32 {
@@ -428,7 +460,7 @@ fn vsqrt(x: f32) -> f32 {
     unsafe { cost_vsqrt(x) }
 }
 #[cfg(target_abi = "eabihf")]
-fn floor_rope() -> Option<FloorRope> {
+fn floor_rope<const GUARD: bool, const CARRY: bool>() -> Option<FloorRope<GUARD, CARRY>> {
     let t = chain_tuning()?;
     let mut x = [[0.0; 2]; CHAIN + 1];
     for (i, x) in x.iter_mut().enumerate() {
@@ -440,6 +472,7 @@ fn floor_rope() -> Option<FloorRope> {
         rest: [1.0; CHAIN],
         weights: [(0.5, 0.5); CHAIN],
         x,
+        r: [[0.0; 2]; CHAIN + 1],
         u: [[0.0; 2]; CHAIN + 1],
     })
 }
@@ -558,7 +591,10 @@ fn measure_hardware() -> bool {
         "distance_2d/hardware_sqrt",
         "f32",
         distance_2d::<f32, stiffspring::length::HardwareSqrt>,
-    ) & report("floor_rope/hardware_sqrt", "f32", floor_rope)
+    ) & report("floor_rope/hardware_sqrt", "f32", floor_rope::<false, false>)
+        & report("floor_rope_guard/hardware_sqrt", "f32", floor_rope::<true, false>)
+        & report("floor_rope_carry/hardware_sqrt", "f32", floor_rope::<false, true>)
+        & report("floor_rope_guard_carry/hardware_sqrt", "f32", floor_rope::<true, true>)
 }
 #[cfg(not(target_abi = "eabihf"))]
 fn measure_hardware() -> bool {
