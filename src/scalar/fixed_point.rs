@@ -232,6 +232,10 @@ macro_rules! fixed_backend {
                 0.0
             }
             #[inline(always)]
+            fn state_abs(state: $State) -> $State {
+                state.saturating_abs()
+            }
+            #[inline(always)]
             fn state_clamp(state: $State, _bound: $State) -> $State {
                 state
             }

@@ -133,6 +133,10 @@ macro_rules! float_backend {
                 $carrying::to_f64(r)
             }
             #[inline(always)]
+            fn state_abs(state: Self) -> Self {
+                <$F>::abs(state)
+            }
+            #[inline(always)]
             fn state_clamp(state: Self, bound: Self) -> Self {
                 // Written so that NaN fails every comparison and lands on 0.
                 if state.abs() <= bound {

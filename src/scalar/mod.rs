@@ -198,6 +198,8 @@ pub trait Scalar:
     ) -> Self::State;
     /// A remainder as `f64` (0 where there is none).
     fn remainder_to_f64(r: Self::Remainder) -> f64;
+    /// `|state|` (saturating in fixed point; one `vabs` in `f32` on a Cortex-M4F).
+    fn state_abs(state: Self::State) -> Self::State;
     /// `state` limited to `[−bound, bound]`, NaN mapped to 0: the safety net that keeps
     /// an unstable float network finite. The identity in fixed point, whose arithmetic
     /// saturates.

@@ -44,7 +44,7 @@ fn integrate<S: Scalar, const D: usize>(
         let mut total = S::STATE_ZERO;
         for k in 0..D {
             (next[k], rest[k]) = S::add_carrying(x[k], r[k], u[k]);
-            total = S::state_add(total, S::state_add(abs::<S>(u[k]), abs::<S>(next[k])));
+            total = S::state_add(total, S::state_add(S::state_abs(u[k]), S::state_abs(next[k])));
         }
         if S::within(total, bound) {
             *x = next;
@@ -62,16 +62,6 @@ fn integrate<S: Scalar, const D: usize>(
         } else {
             Default::default()
         };
-    }
-}
-
-/// `|s|` for float states (where `State` is the float): `s` if `s ≥ 0`, else `−s`.
-#[inline(always)]
-fn abs<S: Scalar>(s: S::State) -> S::State {
-    if s < S::STATE_ZERO {
-        S::state_sub(S::STATE_ZERO, s)
-    } else {
-        s
     }
 }
 
