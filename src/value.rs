@@ -509,7 +509,9 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     pub fn position(&self) -> [S; D] {
         let mut p = self.target;
         for (p, x) in p.iter_mut().zip(self.offset.iter()) {
-            *p = p.add(S::narrow(*x));
+            // Summed in the state format, which holds offsets beyond the position range
+            // (a retarget across the whole range), then rounded once.
+            *p = S::narrow(S::state_add(p.widen(), *x));
         }
         p
     }
