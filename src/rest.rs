@@ -156,13 +156,15 @@ impl<S: Scalar> RestBand<S> {
         } else {
             by_speed
         };
-        // Fixed point: the offset band is at least a position's last bit, so that rounding
-        // the state to a position never hides motion the band would have caught; the
-        // spring's dead band is below a last bit (set-up refuses C_k below the state's
-        // resolution). The step-velocity band is at least 2⁻¹⁶ of a last bit (256 and
-        // 65 536 of the state's last bits), which holds the few-bit cycles a spring with
-        // C_k ≥ 1.5 can end in, and no more: a whole last bit per step is a swing of
-        // `lsb/√C_k`, 32 times the default threshold for a 1 Hz spring at 10 kHz.
+        // Fixed point: motion of about one last bit counts as rest, and never less. The
+        // offset band is at least a position's last bit, so that rounding the state to a
+        // position never hides motion the band would have caught (the spring's dead band
+        // is below a last bit: set-up refuses C_k below the state's resolution). The
+        // step-velocity band is at least `lsb·√C_k`, the kept step velocity of a swing of
+        // one last bit: it holds the few-bit cycles of the state that a spring beyond the
+        // square can end in (C_k ≥ 1.5, or C_d > 1), and no more. A whole last bit per
+        // step would be a swing of `lsb/√C_k`, 32 times the default threshold for a 1 Hz
+        // spring at 10 kHz in `I16F16`.
         let lsb = S::RESOLUTION;
         let clamp = |v: f64, least: f64| {
             let v = if v < least { least } else { v };
@@ -172,7 +174,7 @@ impl<S: Scalar> RestBand<S> {
         };
         RestBand {
             offset: clamp(p, lsb),
-            step_velocity: clamp(u, lsb * (1.0 / 65_536.0)),
+            step_velocity: clamp(u, lsb * root_stiffness),
         }
     }
 

@@ -151,7 +151,7 @@ fn predicted_steps<S: Scalar>(tuning: &Tuning, t: &RestThreshold, amplitude: f64
     let p = (t.position() / 2f64.sqrt()).max(S::RESOLUTION);
     let u_max = (p * ck.sqrt())
         .min(t.velocity() * tuning.dt())
-        .max(S::RESOLUTION / 65_536.0);
+        .max(S::RESOLUTION * ck.sqrt());
     let kept = (r * c).abs();
     let threshold = if kept > 0.0 { p.min(u_max / kept) } else { p };
     (threshold / amplitude).ln() / rho.ln()
