@@ -103,12 +103,12 @@ impl<S: Scalar> Start<S> {
     /// offset `x` with step velocity `u`.
     pub(crate) fn velocity(&self, offset: S::State, step_velocity: S::State) -> S {
         let u = S::state_sub(step_velocity, S::scale(offset, self.offset_weight));
-        S::narrow(S::scale(u, self.inverse_velocity_weight))
+        read(S::scale(u, self.inverse_velocity_weight))
     }
 
     /// The step velocity `u = ũ/(1 − C_d)` of the last step (0 for `C_d = 1`).
-    pub(crate) fn step_velocity_of(&self, kept: S::State) -> S::State {
-        S::scale(kept, self.inverse_retention)
+    pub(crate) fn step_velocity_of(&self, kept: S::State) -> S {
+        read(S::scale(kept, self.inverse_retention))
     }
 
     /// `state` if it lies within the limit, else the error naming `parameter`.
@@ -140,4 +140,12 @@ impl<S: Scalar> Start<S> {
             S::state_sub(S::STATE_ZERO, self.limit)
         }
     }
+}
+
+/// A derived quantity as a position-format number, saturated at `±Scalar::MAX`: in floats a
+/// heavily overdamped spring's step velocity `ũ/(1 − C_d)` (its exact start extrapolated one
+/// step back) can lie beyond the format, which must read as the largest value, never as
+/// infinity; fixed point saturates in `narrow`.
+fn read<S: Scalar>(state: S::State) -> S {
+    S::narrow(S::state_clamp(state, S::state_from_f64(S::MAX)))
 }

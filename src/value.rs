@@ -543,7 +543,10 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
 
     /// The step velocity `u = x_n − x_{n−1}`: the distance moved in the last step (rounded
     /// to a position in fixed point, whose state keeps more bits). A spring with `C_d = 1`
-    /// keeps no velocity from one step to the next, and reads 0 here.
+    /// keeps no velocity from one step to the next, and reads 0 here. It saturates at
+    /// `±Scalar::MAX`: the exact start of a heavily overdamped spring extrapolates one step
+    /// back to a step velocity beyond any format (see [`Scalar`]), which the value never
+    /// stores (it keeps `(1 − C_d)·u`).
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
@@ -552,15 +555,14 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn step_velocity(&self) -> [S; D] {
-        self.step_velocity
-            .map(|v| S::narrow(self.start.step_velocity_of(v)))
+        self.step_velocity.map(|v| self.start.step_velocity_of(v))
     }
 
     /// The velocity in units per second.
     ///
     /// For a tuning from the exact map it is the velocity of the continuous trajectory
     /// the value samples (see [`SpringValue::fling`], whose inverse it is); for raw
-    /// coefficients the backward difference `u/dt`.
+    /// coefficients the backward difference `u/dt`. It saturates at `±Scalar::MAX`.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
