@@ -272,26 +272,26 @@ impl<S: Scalar> Machine<S> {
                 Err(_) => true,
             },
             Op::RemoveParticle(i) => match self.shadow.particle(i) {
-                Some(p) => match {
+                Some(p) => {
                     let r = self.scene.remove_particle(p);
                     note(r.as_ref().err(), self.shadow.is_stale_particle(p));
-                    r
-                } {
-                    Ok(()) => {
-                        self.shadow.particles.retain(|&(q, _, _)| q != p);
-                        let (gone, kept): (Vec<_>, Vec<_>) = self
-                            .shadow
-                            .springs
-                            .iter()
-                            .partition(|&&(_, a, b)| a == p || b == p);
-                        self.shadow.springs = kept;
-                        self.shadow.stale_springs.extend(gone.iter().map(|s| s.0));
-                        self.shadow.stale_particles.push(p);
-                        // A removed slot may be reused: it is not stale any more then.
-                        false
+                    match r {
+                        Ok(()) => {
+                            self.shadow.particles.retain(|&(q, _, _)| q != p);
+                            let (gone, kept): (Vec<_>, Vec<_>) = self
+                                .shadow
+                                .springs
+                                .iter()
+                                .partition(|&&(_, a, b)| a == p || b == p);
+                            self.shadow.springs = kept;
+                            self.shadow.stale_springs.extend(gone.iter().map(|s| s.0));
+                            self.shadow.stale_particles.push(p);
+                            // A removed slot may be reused: it is not stale any more then.
+                            false
+                        }
+                        Err(_) => true,
                     }
-                    Err(_) => true,
-                },
+                }
                 None => true,
             },
             Op::AddSpring(a, b, rest, ck, cd) => {
@@ -343,18 +343,18 @@ impl<S: Scalar> Machine<S> {
                 _ => true,
             },
             Op::RemoveSpring(i) => match self.shadow.spring(i) {
-                Some(s) => match {
+                Some(s) => {
                     let r = self.scene.remove_spring(s);
                     note(r.as_ref().err(), self.shadow.is_stale_spring(s));
-                    r
-                } {
-                    Ok(()) => {
-                        self.shadow.springs.retain(|&(q, _, _)| q != s);
-                        self.shadow.stale_springs.push(s);
-                        false
+                    match r {
+                        Ok(()) => {
+                            self.shadow.springs.retain(|&(q, _, _)| q != s);
+                            self.shadow.stale_springs.push(s);
+                            false
+                        }
+                        Err(_) => true,
                     }
-                    Err(_) => true,
-                },
+                }
                 None => true,
             },
             Op::SetTuning(i, ck, cd) => match (self.shadow.spring(i), tuning(ck, cd)) {
@@ -366,19 +366,19 @@ impl<S: Scalar> Machine<S> {
                 _ => true,
             },
             Op::SetMass(i, m) => match self.shadow.particle(i) {
-                Some(p) => match {
+                Some(p) => {
                     let r = self.scene.set_mass(p, m.map(from));
                     note(r.as_ref().err(), self.shadow.is_stale_particle(p));
-                    r
-                } {
-                    Ok(()) => {
-                        for e in self.shadow.particles.iter_mut().filter(|e| e.0 == p) {
-                            *e = (p, m.is_none(), m.unwrap_or(0.0));
+                    match r {
+                        Ok(()) => {
+                            for e in self.shadow.particles.iter_mut().filter(|e| e.0 == p) {
+                                *e = (p, m.is_none(), m.unwrap_or(0.0));
+                            }
+                            false
                         }
-                        false
+                        Err(_) => true,
                     }
-                    Err(_) => true,
-                },
+                }
                 None => true,
             },
             Op::SetPosition(i, x, y) => match self.shadow.particle(i) {
