@@ -33,7 +33,7 @@ pub(crate) struct Start<S: Scalar> {
     /// `1/(1 − C_d)`, or 0 when `C_d = 1`: the step velocity from the kept one.
     inverse_retention: S::Factor,
     /// The largest `|x|` and `|u|` a setter may leave: `STATE_MAX / growth` for floats,
-    /// so that no later step can overflow (see `Tuning::growth`); `STATE_MAX` in fixed
+    /// so that no later step can overflow (see `Tuning::growth`); `STATE_MAX / 2` in fixed
     /// point, which saturates.
     pub(crate) limit: S::State,
     limit_f64: f64,
@@ -49,7 +49,9 @@ impl<S: Scalar> Start<S> {
     pub(crate) fn new(tuning: &Tuning) -> Result<Self, Error> {
         let (p, q) = tuning.start_weights();
         let limit = if S::RESOLUTION > 0.0 {
-            S::STATE_MAX
+            // Half the range: a product that saturated at the end of the state is then
+            // seen to be beyond the limit, never taken for a value inside it.
+            0.5 * S::STATE_MAX
         } else {
             // Twice the growth: rounding each step adds to the state a little more than
             // the exact map would.

@@ -60,18 +60,37 @@ pub struct SpringValue<S: Scalar, const D: usize = 1> {
     rest_scales: (f64, f64),
 }
 
-/// The gains of `tuning` in backend `S`, or the error that says why they do not exist.
+/// The gains of `tuning` in backend `S`, or the error that says why they do not exist:
+/// which gain the backend cannot hold, and the smallest one it holds.
 pub(crate) fn gains_of<S: Scalar>(tuning: &Tuning) -> Result<S::Gains, Error> {
-    S::gains(tuning.stiffness(), tuning.damping()).ok_or(Error::Unrepresentable {
-        parameter: Parameter::Stiffness,
-        backend: S::NAME,
-        value: tuning.stiffness(),
-        limit: S::RESOLUTION,
-        remedy: if S::RESOLUTION > 0.0 {
-            Remedy::LowerRate
+    let (k, d) = (tuning.stiffness(), tuning.damping());
+    S::gains(k, d).ok_or_else(|| {
+        let (parameter, value) = if S::gains(k, 0.0).is_none() {
+            (Parameter::Stiffness, k)
         } else {
-            Remedy::WiderBackend
-        },
+            (Parameter::Damping, d)
+        };
+        let held = |v: f64| match parameter {
+            Parameter::Stiffness => S::gains(v, 0.0).is_some(),
+            _ => S::gains(0.0, v).is_some(),
+        };
+        // The smallest power of two the backend holds, found by halving: this runs only
+        // when set-up fails (2⁻²⁴ for `C_k` in `I16F16`, 2⁻³² in `I32F32`).
+        let mut least = 1.0;
+        while least > f64::MIN_POSITIVE && held(0.5 * least) {
+            least *= 0.5;
+        }
+        Error::Unrepresentable {
+            parameter,
+            backend: S::NAME,
+            value,
+            limit: least,
+            remedy: if S::RESOLUTION > 0.0 {
+                Remedy::LowerRate
+            } else {
+                Remedy::WiderBackend
+            },
+        }
     })
 }
 
