@@ -356,6 +356,24 @@ fn every_case<S: Scalar, L: LengthKernel<S>>() {
     refused(&mut f, springs, |s| s.add_anchor(v2(4.0, 0.0), c, one, &t));
     refused(&mut f, springs, |s| s.add_spring(a, c, one, &t));
 
+    // A gain the backend cannot hold (below the state's resolution, or subnormal).
+    let faint = if S::RESOLUTION > 0.0 { 1e-12 } else { 1e-320 };
+    let faint = Tuning::from_coefficients(faint, 0.5, DT).expect("in the square");
+    let before = snapshot(&f.scene);
+    let got = f.scene.add_spring(a, c, one, &faint);
+    assert!(
+        matches!(
+            got,
+            Err(Error::Unrepresentable {
+                parameter: Parameter::Stiffness,
+                ..
+            })
+        ),
+        "{}: {got:?}",
+        S::NAME
+    );
+    assert_eq!(snapshot(&f.scene), before);
+
     // The network limit under Reject: b carries two springs. (The linearised kernel
     // lowers the limit by the stretch the spring has: gravity has pulled it a little.)
     let spring = f.spring;
@@ -376,6 +394,29 @@ fn every_case<S: Scalar, L: LengthKernel<S>>() {
         other => panic!("{} {}: {other:?}", S::NAME, L::NAME),
     }
     assert_eq!(snapshot(&f.scene), before);
+}
+
+/// Freeing a pinned particle makes its springs count on it: three springs of 0.9, each
+/// alone on its free end (limit 1), share the freed particle (limit for three: lower).
+#[test]
+fn freeing_a_pinned_particle_above_the_limit_is_refused() {
+    let mut s = Scene::<f32, 2, 4, 3>::new(SceneConfig::new(DT).expect("dt"));
+    let hub = s.add_pinned([0.0, 0.0]).expect("room");
+    let t = raw(0.9, 0.9);
+    for x in [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0]] {
+        let p = s.add_particle(x, 1.0).expect("room");
+        s.add_spring_at_rest(hub, p, &t)
+            .expect("alone on its free end");
+    }
+    let before = snapshot(&s);
+    let limit = network_limit(3, Stepper::GaussSeidel);
+    assert!(limit < 0.9);
+    let e = Error::ExceedsNetworkLimit {
+        coefficient: 0.9f32 as f64,
+        limit,
+    };
+    assert_eq!(s.set_mass(hub, Some(1.0)), Err(e));
+    assert_eq!(snapshot(&s), before);
 }
 
 #[test]
@@ -455,6 +496,24 @@ fn float_positions<S: Scalar, L: LengthKernel<S>>() {
         refused(&mut f, e, |s| s.set_velocity(a, v2(v, 0.0)));
         refused(&mut f, e, |s| s.set_velocity(a, v2(0.0, v)));
     }
+    let twice = S::from_f64(2.0 * S::MAX);
+    let e = Error::OutOfRange {
+        parameter: Parameter::Impulse,
+        value: 2.0 * S::MAX,
+        bound: Bound::MagnitudeAtMost { max: S::MAX },
+    };
+    refused(&mut f, e, |s| s.apply_impulse(a, [twice, S::ZERO]));
+    let [_, _, c] = f.free;
+    let least = if L::ZERO_REST { 0.0 } else { f64::MIN_POSITIVE };
+    let e = Error::OutOfRange {
+        parameter: Parameter::RestLength,
+        value: 2.0 * S::MAX,
+        bound: Bound::Within {
+            min: least,
+            max: S::MAX,
+        },
+    };
+    refused(&mut f, e, |s| s.add_spring(a, c, twice, &t));
     // At a long time step, a velocity within range whose step is beyond the bound.
     let dt = 4.0;
     let mut s = Scene::<S, 1, 1, 1, L>::new(SceneConfig::new(dt).expect("dt"));

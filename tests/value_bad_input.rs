@@ -190,6 +190,19 @@ fn values_and_batches_refuse_a_tuning_the_backend_cannot_hold() {
     let before = show(&v);
     assert_eq!(v.set_tuning(&slow), Err(e));
     assert_eq!(show(&v), before);
+    let t = Tuning::from_frequency(2.0, 0.3, DT).expect("valid");
+    let mut b = SpringBatch::<I16F16, 1, 2>::new(&t).expect("valid");
+    let i = b.push([I16F16::ONE]).expect("room");
+    b.set_target(i, [I16F16::ZERO]);
+    let _ = b.step();
+    let state = |b: &SpringBatch<I16F16, 1, 2>| {
+        b.iter()
+            .map(|(i, p)| (i, p, b.velocity(i)))
+            .collect::<Vec<_>>()
+    };
+    let before = state(&b);
+    assert_eq!(b.set_tuning(&slow), Err(e));
+    assert_eq!((b.tuning(), state(&b)), (t, before));
 }
 
 /// A fling or a retune whose step velocity leaves the state: an `I16F16` state holds
