@@ -156,19 +156,25 @@ impl<S: Scalar> RestBand<S> {
         } else {
             by_speed
         };
-        // Fixed point: at least a position's last bit, so that rounding the state to a
-        // position never hides motion the band would have caught. The spring's dead band
-        // is below a last bit (set-up refuses C_k below the state's resolution).
+        // Fixed point: motion of about one last bit counts as rest, and never less. The
+        // offset band is at least a position's last bit, so that rounding the state to a
+        // position never hides motion the band would have caught (the spring's dead band
+        // is below a last bit: set-up refuses C_k below the state's resolution). The
+        // step-velocity band is at least `lsb·√C_k`, the kept step velocity of a swing of
+        // one last bit: it holds the few-bit cycles of the state that a spring beyond the
+        // square can end in (C_k ≥ 1.5, or C_d > 1), and no more. A whole last bit per
+        // step would be a swing of `lsb/√C_k`, 32 times the default threshold for a 1 Hz
+        // spring at 10 kHz in `I16F16`.
         let lsb = S::RESOLUTION;
-        let clamp = |v: f64| {
-            let v = if v < lsb { lsb } else { v };
+        let clamp = |v: f64, least: f64| {
+            let v = if v < least { least } else { v };
             // At most half the state's range, so that `Scalar::within` cannot overflow.
             let half = 0.5 * S::STATE_MAX;
             S::band(S::state_from_f64(if v > half { half } else { v }))
         };
         RestBand {
-            offset: clamp(p),
-            step_velocity: clamp(u),
+            offset: clamp(p, lsb),
+            step_velocity: clamp(u, lsb * root_stiffness),
         }
     }
 

@@ -33,7 +33,7 @@ pub(crate) struct Start<S: Scalar> {
     /// `1/(1 − C_d)`, or 0 when `C_d = 1`: the step velocity from the kept one.
     inverse_retention: S::Factor,
     /// The largest `|x|` and `|u|` a setter may leave: `STATE_MAX / growth` for floats,
-    /// so that no later step can overflow (see `Tuning::growth`); `STATE_MAX` in fixed
+    /// so that no later step can overflow (see `Tuning::growth`); `STATE_MAX / 2` in fixed
     /// point, which saturates.
     pub(crate) limit: S::State,
     limit_f64: f64,
@@ -49,7 +49,9 @@ impl<S: Scalar> Start<S> {
     pub(crate) fn new(tuning: &Tuning) -> Result<Self, Error> {
         let (p, q) = tuning.start_weights();
         let limit = if S::RESOLUTION > 0.0 {
-            S::STATE_MAX
+            // Half the range: a product that saturated at the end of the state is then
+            // seen to be beyond the limit, never taken for a value inside it.
+            0.5 * S::STATE_MAX
         } else {
             // Twice the growth: rounding each step adds to the state a little more than
             // the exact map would.
@@ -103,12 +105,12 @@ impl<S: Scalar> Start<S> {
     /// offset `x` with step velocity `u`.
     pub(crate) fn velocity(&self, offset: S::State, step_velocity: S::State) -> S {
         let u = S::state_sub(step_velocity, S::scale(offset, self.offset_weight));
-        S::narrow(S::scale(u, self.inverse_velocity_weight))
+        read(S::scale(u, self.inverse_velocity_weight))
     }
 
     /// The step velocity `u = ũ/(1 − C_d)` of the last step (0 for `C_d = 1`).
-    pub(crate) fn step_velocity_of(&self, kept: S::State) -> S::State {
-        S::scale(kept, self.inverse_retention)
+    pub(crate) fn step_velocity_of(&self, kept: S::State) -> S {
+        read(S::scale(kept, self.inverse_retention))
     }
 
     /// `state` if it lies within the limit, else the error naming `parameter`.
@@ -152,4 +154,12 @@ pub(crate) fn bounded<S: Scalar>(
             },
         })
     }
+}
+
+/// A derived quantity as a position-format number, saturated at `±Scalar::MAX`: in floats a
+/// heavily overdamped spring's step velocity `ũ/(1 − C_d)` (its exact start extrapolated one
+/// step back) can lie beyond the format, which must read as the largest value, never as
+/// infinity; fixed point saturates in `narrow`.
+fn read<S: Scalar>(state: S::State) -> S {
+    S::narrow(S::state_clamp(state, S::state_from_f64(S::MAX)))
 }

@@ -60,18 +60,37 @@ pub struct SpringValue<S: Scalar, const D: usize = 1> {
     rest_scales: (f64, f64),
 }
 
-/// The gains of `tuning` in backend `S`, or the error that says why they do not exist.
+/// The gains of `tuning` in backend `S`, or the error that says why they do not exist:
+/// which gain the backend cannot hold, and the smallest one it holds.
 pub(crate) fn gains_of<S: Scalar>(tuning: &Tuning) -> Result<S::Gains, Error> {
-    S::gains(tuning.stiffness(), tuning.damping()).ok_or(Error::Unrepresentable {
-        parameter: Parameter::Stiffness,
-        backend: S::NAME,
-        value: tuning.stiffness(),
-        limit: S::RESOLUTION,
-        remedy: if S::RESOLUTION > 0.0 {
-            Remedy::LowerRate
+    let (k, d) = (tuning.stiffness(), tuning.damping());
+    S::gains(k, d).ok_or_else(|| {
+        let (parameter, value) = if S::gains(k, 0.0).is_none() {
+            (Parameter::Stiffness, k)
         } else {
-            Remedy::WiderBackend
-        },
+            (Parameter::Damping, d)
+        };
+        let held = |v: f64| match parameter {
+            Parameter::Stiffness => S::gains(v, 0.0).is_some(),
+            _ => S::gains(0.0, v).is_some(),
+        };
+        // The smallest power of two the backend holds, found by halving: this runs only
+        // when set-up fails (2⁻²⁴ for `C_k` in `I16F16`, 2⁻³² in `I32F32`).
+        let mut least = 1.0;
+        while least > f64::MIN_POSITIVE && held(0.5 * least) {
+            least *= 0.5;
+        }
+        Error::Unrepresentable {
+            parameter,
+            backend: S::NAME,
+            value,
+            limit: least,
+            remedy: if S::RESOLUTION > 0.0 {
+                Remedy::LowerRate
+            } else {
+                Remedy::WiderBackend
+            },
+        }
     })
 }
 
@@ -509,7 +528,9 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     pub fn position(&self) -> [S; D] {
         let mut p = self.target;
         for (p, x) in p.iter_mut().zip(self.offset.iter()) {
-            *p = p.add(S::narrow(*x));
+            // Summed in the state format, which holds offsets beyond the position range
+            // (a retarget across the whole range), then rounded once.
+            *p = S::narrow(S::state_add(p.widen(), *x));
         }
         p
     }
@@ -541,7 +562,10 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
 
     /// The step velocity `u = x_n − x_{n−1}`: the distance moved in the last step (rounded
     /// to a position in fixed point, whose state keeps more bits). A spring with `C_d = 1`
-    /// keeps no velocity from one step to the next, and reads 0 here.
+    /// keeps no velocity from one step to the next, and reads 0 here. It saturates at
+    /// `±Scalar::MAX`: the exact start of a heavily overdamped spring extrapolates one step
+    /// back to a step velocity beyond any format (see [`Scalar`]), which the value never
+    /// stores (it keeps `(1 − C_d)·u`).
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};
@@ -550,15 +574,14 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn step_velocity(&self) -> [S; D] {
-        self.step_velocity
-            .map(|v| S::narrow(self.start.step_velocity_of(v)))
+        self.step_velocity.map(|v| self.start.step_velocity_of(v))
     }
 
     /// The velocity in units per second.
     ///
     /// For a tuning from the exact map it is the velocity of the continuous trajectory
     /// the value samples (see [`SpringValue::fling`], whose inverse it is); for raw
-    /// coefficients the backward difference `u/dt`.
+    /// coefficients the backward difference `u/dt`. It saturates at `±Scalar::MAX`.
     ///
     /// ```
     /// use stiffspring::{SpringValue, Tuning};

@@ -10,18 +10,17 @@
 //! API (the pages of `cargo doc`), so a type added later without `Format` fails CI.
 #![cfg(feature = "defmt")]
 
-use stiffspring::kernel::{BodyWeights, Coefficients};
-use stiffspring::knob::stability::{Latency, StrengthMap};
-use stiffspring::knob::{Endstop, KnobEvents};
-use stiffspring::length::{Approximate, ApproximateNewton, Exact, Linearised};
+use stiffspring::kernel::BodyWeights;
+use stiffspring::knob::{Endstop, KnobError, KnobEvents, Latency, Limit, LoopCoefficients, Zone};
+use stiffspring::length::{Approximate, ApproximateNewton, Exact, Linearised, LinearisedRest};
+use stiffspring::scalar::{FixedFactor, FixedGains, FloatGains};
 use stiffspring::scene::{
-    Added, Angle, LimitPolicy, ParticleId, Scene, SceneConfig, SleepThreshold, SpringId, Stepper,
-    WrappedAngle,
+    Added, Angle, LimitPolicy, ParticleId, Scene, SceneConfig, SceneMotion, SleepThreshold,
+    SpringId, Stepper, WrappedAngle,
 };
 use stiffspring::{
-    AndroidDamping, AndroidStiffness, Error, I16F16, I32F32, Knob, KnobConfig, KnobOutput,
-    Oscillator, Parameter, ReactSpringPreset, RestThreshold, SpringBatch, SpringValue,
-    SwiftUiPreset, Tuning,
+    BatchIndex, BatchMotion, Bound, Error, I16F16, I32F32, Knob, KnobConfig, KnobOutput, Motion,
+    Oscillator, Parameter, Remedy, RestThreshold, SpringBatch, SpringValue, Tuning,
 };
 
 /// Compiles only for `T: defmt::Format`.
@@ -47,17 +46,22 @@ const _: () = {
     is_format::<RestThreshold>();
     is_format::<Error>();
     is_format::<Parameter>();
-    is_format::<SwiftUiPreset>();
-    is_format::<AndroidStiffness>();
-    is_format::<AndroidDamping>();
-    is_format::<ReactSpringPreset>();
-    // Values.
+    is_format::<Bound>();
+    is_format::<Remedy>();
+    // Values and batches.
     is_format::<SpringValue<f32, 2>>();
     is_format::<SpringValue<I16F16, 1>>();
-    is_format::<SpringBatch<f32, 4, 2>>();
-    is_format::<SpringBatch<I16F16, 4>>();
-    // The kernel.
-    in_every_backend!(Coefficients, BodyWeights);
+    is_format::<SpringValue<I32F32, 3>>();
+    is_format::<SpringBatch<f32, 2, 4>>();
+    is_format::<SpringBatch<I16F16, 1, 4>>();
+    is_format::<BatchIndex>();
+    is_format::<BatchMotion>();
+    is_format::<Motion>();
+    // The kernel and the backends' formats.
+    in_every_backend!(BodyWeights, LinearisedRest);
+    is_format::<FloatGains<f32>>();
+    is_format::<FixedGains<i32>>();
+    is_format::<FixedFactor<i64>>();
     // Length kernels.
     is_format::<Exact>();
     is_format::<Linearised>();
@@ -65,12 +69,14 @@ const _: () = {
     is_format::<ApproximateNewton>();
     // `length::HardwareSqrt` exists only on hard-float ARM targets: the firmware build
     // of `examples/cost.rs` asserts it there.
-    // Scenes.
+    // Scenes (`scene::AngularScene` is an alias of `Scene` with an angle kernel).
     is_format::<Scene<f32, 2, 8, 7>>();
     is_format::<Scene<I16F16, 2, 8, 7, Linearised>>();
     is_format::<Scene<f32, 1, 4, 3, Angle>>();
     is_format::<Scene<I16F16, 1, 4, 3, WrappedAngle>>();
-    is_format::<SceneConfig<2>>();
+    is_format::<SceneConfig<f32, 2>>();
+    is_format::<SceneConfig<I16F16, 3>>();
+    is_format::<SceneMotion>();
     is_format::<Stepper>();
     is_format::<LimitPolicy>();
     is_format::<SleepThreshold>();
@@ -82,10 +88,13 @@ const _: () = {
     // The knob.
     in_every_backend!(Knob, KnobOutput);
     is_format::<KnobConfig>();
+    is_format::<KnobError>();
     is_format::<KnobEvents>();
     is_format::<Endstop>();
-    is_format::<StrengthMap>();
+    is_format::<Zone>();
+    is_format::<Limit>();
     is_format::<Latency>();
+    is_format::<LoopCoefficients>();
 };
 
 #[test]

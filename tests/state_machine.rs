@@ -1,22 +1,22 @@
-//! A state-machine property test: random sequences of operations on a scene, a value
-//! and a knob, with the invariants checked after every one.
+//! A state-machine property test: random sequences of operations on a scene and a knob,
+//! with the invariants checked after every one (values and batches have their own,
+//! `tests/value_state_machine.rs`).
 //!
-//! Operations: add and remove particles (free and pinned) and springs, retune springs,
-//! change masses (and pin or free particles), move particles and anchors, set velocities,
-//! apply impulses, step; retarget, fling, retune and re-time (`set_dt`) a value; drive a
-//! knob with wild angles and velocities, reset it, rebuild it with another configuration.
-//! Arguments are drawn mostly valid and sometimes bad (NaN, infinities, zero, negative,
-//! huge, stale ids, full capacity), so every operation either succeeds or returns a typed
-//! error.
+//! Operations: add and remove particles (free and pinned), springs and anchors, retune
+//! springs, change masses (and pin or free particles), move particles and anchors, set
+//! velocities, apply impulses, step; drive a knob with wild angles and velocities, reset
+//! it, rebuild it with another configuration. Arguments are drawn mostly valid and
+//! sometimes bad (NaN, infinities, zero, negative, huge, stale ids, full capacity), so
+//! every operation either succeeds or returns a typed error.
 //!
 //! Invariants, after every operation:
 //!
 //! - nothing panics;
 //! - a failed operation changes no count, and the counts match a shadow model and never
-//!   exceed the capacities;
+//!   exceed the capacities; an operation on a removed particle or spring fails with
+//!   `Error::Stale` (ids are generational: a stale id never names a new particle);
 //! - every position and step velocity is finite and within the backend's network
-//!   magnitude (floats), the value's position is finite, the knob's torque is finite and
-//!   in `[−1, 1]`;
+//!   magnitude (floats); the knob's torque is finite and in `[−1, 1]`;
 //! - every spring's coefficients are within `network_limit` of its share count, computed
 //!   from the shadow model;
 //! - **momentum accounting** (f64, no gravity, no sleep): a step changes the total
@@ -29,9 +29,11 @@
 
 use proptest::prelude::*;
 use stiffspring::scene::{
-    LimitPolicy, ParticleId, Scene, SceneConfig, SpringId, Stepper, network_limit,
+    Added, LimitPolicy, ParticleId, Scene, SceneConfig, SpringId, Stepper, network_limit,
 };
-use stiffspring::{I16F16, Knob, KnobConfig, Scalar, SpringValue, Tuning};
+use stiffspring::{Error, I16F16, Knob, KnobConfig, Scalar, Tuning};
+
+const DT: f64 = 1.0 / 60.0;
 
 const P: usize = 8;
 const K: usize = 12;
@@ -58,17 +60,13 @@ enum Op {
     AddSpring(usize, usize, f64, f64, f64),
     AddSpringAtRest(usize, usize, f64, f64),
     RemoveSpring(usize),
+    AddAnchor(usize, f64, f64, f64, f64, f64),
     SetTuning(usize, f64, f64),
     SetMass(usize, Option<f64>),
     SetPosition(usize, f64, f64),
     SetVelocity(usize, f64, f64),
     Impulse(usize, f64, f64),
     Step(u16),
-    ValueTarget(f64, f64),
-    ValueFling(f64, f64),
-    ValueDt(f64),
-    ValueTuning(f64, f64),
-    ValueStep(u16),
     KnobUpdate(f64, f64),
     KnobReset(f64),
     KnobRebuild(f64, f64, f64, f64),
@@ -88,6 +86,8 @@ fn op() -> impl Strategy<Value = Op> {
         4 => (index.clone(), index.clone(), coef.clone(), coef.clone())
             .prop_map(|(a, b, k, d)| Op::AddSpringAtRest(a, b, k, d)),
         1 => index.clone().prop_map(Op::RemoveSpring),
+        2 => (index.clone(), number(-5.0, 5.0), number(-5.0, 5.0), number(0.0, 3.0), coef.clone(), coef.clone())
+            .prop_map(|(p, x, y, r, k, d)| Op::AddAnchor(p, x, y, r, k, d)),
         2 => (index.clone(), coef.clone(), coef.clone()).prop_map(|(s, k, d)| Op::SetTuning(s, k, d)),
         1 => (index.clone(), prop::option::of(number(0.1, 10.0))).prop_map(|(p, m)| Op::SetMass(p, m)),
         2 => (index.clone(), number(-5.0, 5.0), number(-5.0, 5.0))
@@ -97,14 +97,9 @@ fn op() -> impl Strategy<Value = Op> {
         2 => (index.clone(), number(-10.0, 10.0), number(-10.0, 10.0))
             .prop_map(|(p, x, y)| Op::Impulse(p, x, y)),
         5 => (1u16..300).prop_map(Op::Step),
-        1 => (number(-100.0, 100.0), number(-100.0, 100.0)).prop_map(|(x, y)| Op::ValueTarget(x, y)),
-        1 => (number(-1e3, 1e3), number(-1e3, 1e3)).prop_map(|(x, y)| Op::ValueFling(x, y)),
-        1 => number(1e-4, 0.1).prop_map(Op::ValueDt),
-        1 => (number(0.1, 20.0), number(0.0, 2.0)).prop_map(|(f, z)| Op::ValueTuning(f, z)),
-        2 => (1u16..300).prop_map(Op::ValueStep),
         3 => (number(-10.0, 10.0), number(-1e3, 1e3)).prop_map(|(a, v)| Op::KnobUpdate(a, v)),
         1 => number(-10.0, 10.0).prop_map(Op::KnobReset),
-        1 => (number(0.0, 1.0), number(0.0, 1.0), number(1e-3, 0.5), number(-3.0, 3.0))
+        1 => (number(0.0, 0.05), number(0.0, 0.05), number(1e-3, 0.5), number(-3.0, 3.0))
             .prop_map(|(d, r, w, c)| Op::KnobRebuild(d, r, w, c)),
     ]
 }
@@ -146,6 +141,14 @@ impl Shadow {
         }
     }
 
+    fn is_stale_particle(&self, p: ParticleId) -> bool {
+        self.stale_particles.contains(&p)
+    }
+
+    fn is_stale_spring(&self, s: SpringId) -> bool {
+        self.stale_springs.contains(&s)
+    }
+
     fn pinned(&self, p: ParticleId) -> bool {
         self.particles
             .iter()
@@ -175,14 +178,10 @@ impl Shadow {
     }
 }
 
-struct Machine<S: Scalar>
-where
-    stiffspring::length::Exact: stiffspring::length::LengthKernel<S>,
-{
+struct Machine<S: Scalar> {
     scene: Scene<S, 2, P, K>,
     stepper: Stepper,
     shadow: Shadow,
-    value: SpringValue<S, 2>,
     knob: Knob<S>,
     momentum_checked: bool,
 }
@@ -210,35 +209,30 @@ fn from<S: Scalar>(x: f64) -> S {
 }
 
 fn tuning(ck: f64, cd: f64) -> Option<Tuning> {
-    Tuning::from_coefficients(ck, cd).ok()
+    Tuning::from_coefficients(ck, cd, DT).ok()
 }
 
-impl<S: Scalar> Machine<S>
-where
-    stiffspring::length::Exact: stiffspring::length::LengthKernel<S>,
-{
+fn knob_config() -> KnobConfig {
+    KnobConfig::new(1_000.0, 1e-5, 0.05, 16384)
+}
+
+impl<S: Scalar> Machine<S> {
     fn new(stepper: Stepper, policy: LimitPolicy, gravity: bool, sleep: bool) -> Self {
-        let mut config = SceneConfig::new(1.0 / 60.0)
-            .unwrap()
+        let g = if gravity { -9.81 } else { 0.0 };
+        let mut config = SceneConfig::new(DT)
+            .expect("dt > 0")
             .stepper(stepper)
             .limit_policy(policy)
-            .gravity([0.0, if gravity { -9.81 } else { 0.0 }])
-            .unwrap();
+            .gravity([S::ZERO, S::from_f64(g)])
+            .expect("finite");
         if !sleep {
             config = config.no_sleep();
         }
-        let dt = 1.0 / 60.0;
         Machine {
-            scene: Scene::new(config).unwrap(),
+            scene: Scene::new(config),
             stepper,
             shadow: Shadow::default(),
-            value: SpringValue::new(
-                [S::ZERO; 2],
-                Tuning::from_frequency(2.0, 0.5, dt).unwrap(),
-                dt,
-            )
-            .unwrap(),
-            knob: Knob::new(&KnobConfig::new(1e-3, 1e-5, 0.05), 0.0).unwrap(),
+            knob: Knob::new(&knob_config(), S::ZERO).expect("valid"),
             momentum_checked: !gravity && !sleep && S::NAME == "f64",
         }
     }
@@ -255,8 +249,15 @@ where
         let counts = (self.scene.particle_count(), self.scene.spring_count());
         let momentum = self.scene.momentum();
         let mut expected_momentum = None;
+        // Whether the op names a removed particle or spring: it must then fail as stale.
+        let mut stale = false;
+        let mut stale_error = false;
+        let mut note = |r: Option<&Error>, is_stale: bool| {
+            stale |= is_stale;
+            stale_error |= matches!(r, Some(Error::Stale { .. }));
+        };
         let failed = match *op {
-            Op::AddParticle(x, y, m) => match self.scene.add_particle(v2(x, y), m) {
+            Op::AddParticle(x, y, m) => match self.scene.add_particle(v2(x, y), from(m)) {
                 Ok(p) => {
                     self.shadow.particles.push((p, false, m));
                     false
@@ -271,22 +272,26 @@ where
                 Err(_) => true,
             },
             Op::RemoveParticle(i) => match self.shadow.particle(i) {
-                Some(p) => match self.scene.remove_particle(p) {
-                    Ok(()) => {
-                        self.shadow.particles.retain(|&(q, _, _)| q != p);
-                        let (gone, kept): (Vec<_>, Vec<_>) = self
-                            .shadow
-                            .springs
-                            .iter()
-                            .partition(|&&(_, a, b)| a == p || b == p);
-                        self.shadow.springs = kept;
-                        self.shadow.stale_springs.extend(gone.iter().map(|s| s.0));
-                        self.shadow.stale_particles.push(p);
-                        // A removed slot may be reused: it is not stale any more then.
-                        false
+                Some(p) => {
+                    let r = self.scene.remove_particle(p);
+                    note(r.as_ref().err(), self.shadow.is_stale_particle(p));
+                    match r {
+                        Ok(()) => {
+                            self.shadow.particles.retain(|&(q, _, _)| q != p);
+                            let (gone, kept): (Vec<_>, Vec<_>) = self
+                                .shadow
+                                .springs
+                                .iter()
+                                .partition(|&&(_, a, b)| a == p || b == p);
+                            self.shadow.springs = kept;
+                            self.shadow.stale_springs.extend(gone.iter().map(|s| s.0));
+                            self.shadow.stale_particles.push(p);
+                            // A removed slot may be reused: it is not stale any more then.
+                            false
+                        }
+                        Err(_) => true,
                     }
-                    Err(_) => true,
-                },
+                }
                 None => true,
             },
             Op::AddSpring(a, b, rest, ck, cd) => {
@@ -296,7 +301,10 @@ where
                     tuning(ck, cd),
                 ) {
                     (Some(pa), Some(pb), Some(t)) => {
-                        let added = self.scene.add_spring(pa, pb, rest, t);
+                        let added = self.scene.add_spring(pa, pb, from(rest), &t);
+                        let st =
+                            self.shadow.is_stale_particle(pa) || self.shadow.is_stale_particle(pb);
+                        note(added.as_ref().err(), st);
                         self.add_spring(added, pa, pb)
                     }
                     _ => true,
@@ -309,43 +317,76 @@ where
                     tuning(ck, cd),
                 ) {
                     (Some(pa), Some(pb), Some(t)) => {
-                        let added = self.scene.add_spring_at_rest(pa, pb, t);
+                        let added = self.scene.add_spring_at_rest(pa, pb, &t);
+                        let st =
+                            self.shadow.is_stale_particle(pa) || self.shadow.is_stale_particle(pb);
+                        note(added.as_ref().err(), st);
                         self.add_spring(added, pa, pb)
                     }
                     _ => true,
                 }
             }
-            Op::RemoveSpring(i) => match self.shadow.spring(i) {
-                Some(s) => match self.scene.remove_spring(s) {
-                    Ok(()) => {
-                        self.shadow.springs.retain(|&(q, _, _)| q != s);
-                        self.shadow.stale_springs.push(s);
-                        false
+            Op::AddAnchor(i, x, y, rest, ck, cd) => match (self.shadow.particle(i), tuning(ck, cd))
+            {
+                (Some(p), Some(t)) => {
+                    let added = self.scene.add_anchor(v2(x, y), p, from(rest), &t);
+                    note(added.as_ref().err(), self.shadow.is_stale_particle(p));
+                    match added {
+                        Ok((anchor, added)) => {
+                            self.shadow.particles.push((anchor, true, 0.0));
+                            self.shadow.springs.push((added.spring, anchor, p));
+                            false
+                        }
+                        Err(_) => true,
                     }
-                    Err(_) => true,
-                },
+                }
+                _ => true,
+            },
+            Op::RemoveSpring(i) => match self.shadow.spring(i) {
+                Some(s) => {
+                    let r = self.scene.remove_spring(s);
+                    note(r.as_ref().err(), self.shadow.is_stale_spring(s));
+                    match r {
+                        Ok(()) => {
+                            self.shadow.springs.retain(|&(q, _, _)| q != s);
+                            self.shadow.stale_springs.push(s);
+                            false
+                        }
+                        Err(_) => true,
+                    }
+                }
                 None => true,
             },
             Op::SetTuning(i, ck, cd) => match (self.shadow.spring(i), tuning(ck, cd)) {
-                (Some(s), Some(t)) => self.scene.set_tuning(s, t).is_err(),
+                (Some(s), Some(t)) => {
+                    let r = self.scene.set_tuning(s, &t);
+                    note(r.as_ref().err(), self.shadow.is_stale_spring(s));
+                    r.is_err()
+                }
                 _ => true,
             },
             Op::SetMass(i, m) => match self.shadow.particle(i) {
-                Some(p) => match self.scene.set_mass(p, m) {
-                    Ok(()) => {
-                        for e in self.shadow.particles.iter_mut().filter(|e| e.0 == p) {
-                            *e = (p, m.is_none(), m.unwrap_or(0.0));
+                Some(p) => {
+                    let r = self.scene.set_mass(p, m.map(from));
+                    note(r.as_ref().err(), self.shadow.is_stale_particle(p));
+                    match r {
+                        Ok(()) => {
+                            for e in self.shadow.particles.iter_mut().filter(|e| e.0 == p) {
+                                *e = (p, m.is_none(), m.unwrap_or(0.0));
+                            }
+                            false
                         }
-                        false
+                        Err(_) => true,
                     }
-                    Err(_) => true,
-                },
+                }
                 None => true,
             },
             Op::SetPosition(i, x, y) => match self.shadow.particle(i) {
                 Some(p) => {
                     let pinned = self.shadow.pinned(p);
-                    let ok = self.scene.set_position(p, v2(x, y)).is_ok();
+                    let r = self.scene.set_position(p, v2(x, y));
+                    note(r.as_ref().err(), self.shadow.is_stale_particle(p));
+                    let ok = r.is_ok();
                     if ok && pinned {
                         // A moved anchor pushes its springs this step: external.
                         self.momentum_checked = false;
@@ -357,7 +398,9 @@ where
             Op::SetVelocity(i, x, y) => match self.shadow.particle(i) {
                 Some(p) => {
                     let before = self.scene.velocity(p);
-                    match self.scene.set_velocity(p, v2(x, y)) {
+                    let r = self.scene.set_velocity(p, v2(x, y));
+                    note(r.as_ref().err(), self.shadow.is_stale_particle(p));
+                    match r {
                         Ok(()) => {
                             let (m, after) = (self.mass(p), self.scene.velocity(p).unwrap());
                             let before = before.unwrap();
@@ -373,34 +416,27 @@ where
                 None => true,
             },
             Op::Impulse(i, x, y) => match self.shadow.particle(i) {
-                Some(p) => match self.scene.apply_impulse(p, [x, y]) {
-                    Ok(()) => {
-                        expected_momentum = Some([momentum[0] + x, momentum[1] + y]);
-                        false
+                Some(p) => {
+                    let j: [S; 2] = v2(x, y);
+                    let r = self.scene.apply_impulse(p, j);
+                    note(r.as_ref().err(), self.shadow.is_stale_particle(p));
+                    match r {
+                        Ok(()) => {
+                            let (jx, jy) = (j[0].to_f64(), j[1].to_f64());
+                            expected_momentum = Some([momentum[0] + jx, momentum[1] + jy]);
+                            false
+                        }
+                        Err(_) => true,
                     }
-                    Err(_) => true,
-                },
+                }
                 None => true,
             },
             Op::Step(n) => {
                 for _ in 0..n {
-                    self.scene.step();
+                    let _ = self.scene.step();
                 }
                 if self.shadow.closed() {
                     expected_momentum = Some(momentum);
-                }
-                false
-            }
-            Op::ValueTarget(x, y) => self.value.set_target(v2(x, y)).is_err(),
-            Op::ValueFling(x, y) => self.value.fling(v2(x, y)).is_err(),
-            Op::ValueDt(dt) => self.value.set_dt(dt).is_err(),
-            Op::ValueTuning(f, z) => match Tuning::from_frequency(f, z, self.value.dt()) {
-                Ok(t) => self.value.set_tuning(t).is_err(),
-                Err(_) => true,
-            },
-            Op::ValueStep(n) => {
-                for _ in 0..n {
-                    self.value.step();
                 }
                 false
             }
@@ -419,12 +455,12 @@ where
                 false
             }
             Op::KnobRebuild(detent, ret, width, centre) => {
-                let config = KnobConfig::new(1e-3, 1e-5, 0.05)
+                let config = knob_config()
                     .endstops(-3.0, 3.0)
                     .detent_width(width)
-                    .detent_strength(detent)
+                    .detent_stiffness(detent)
                     .return_to_centre(centre, ret);
-                match Knob::new(&config, 0.0) {
+                match Knob::new(&config, S::ZERO) {
                     Ok(k) => {
                         self.knob = k;
                         false
@@ -441,15 +477,15 @@ where
                 op
             );
         }
+        prop_assert!(
+            !stale || stale_error,
+            "{:?} named a removed id and did not fail as stale",
+            op
+        );
         self.check(expected_momentum)
     }
 
-    fn add_spring(
-        &mut self,
-        added: Result<stiffspring::scene::Added, stiffspring::Error>,
-        a: ParticleId,
-        b: ParticleId,
-    ) -> bool {
+    fn add_spring(&mut self, added: Result<Added, Error>, a: ParticleId, b: ParticleId) -> bool {
         match added {
             Ok(added) => {
                 self.shadow.springs.push((added.spring, a, b));
@@ -471,17 +507,21 @@ where
         prop_assert_eq!(self.scene.spring_count(), self.shadow.springs.len());
         prop_assert!(self.scene.particle_count() <= P && self.scene.spring_count() <= K);
         for (p, x) in self.scene.particles() {
-            let u = self.scene.step_velocity(p).unwrap();
-            for c in x.iter().chain(u.iter()) {
-                let c = c.to_f64();
+            // The step velocity is the velocity times dt.
+            let u = self
+                .scene
+                .velocity(p)
+                .expect("live")
+                .map(|v| v.to_f64() * DT);
+            for c in x.iter().map(|c| c.to_f64()).chain(u) {
                 prop_assert!(
-                    c.is_finite() && c.abs() <= S::NETWORK_MAGNITUDE,
+                    c.is_finite() && c.abs() <= S::NETWORK_MAX * (1.0 + 1e-6),
                     "{p:?}: {c}"
                 );
             }
         }
         for &(s, a, b) in &self.shadow.springs {
-            let t = self.scene.tuning(s).unwrap();
+            let t = self.scene.tuning(s).expect("live");
             let limit = network_limit(self.shadow.share_count(a, b), self.stepper);
             // The backend stores the coefficient rounded (f32: half an ULP).
             let slack = limit * 1e-7;
@@ -490,16 +530,13 @@ where
                 "{s:?} {t:?} above {limit}"
             );
         }
-        for c in self.value.position() {
-            prop_assert!(c.to_f64().is_finite());
-        }
         if let (Some(expected), true) = (expected_momentum, self.momentum_checked) {
             let got = self.scene.momentum();
             let scale: f64 = self
                 .scene
                 .particles()
                 .map(|(p, _)| {
-                    let v = self.scene.velocity(p).unwrap();
+                    let v = self.scene.velocity(p).expect("live");
                     self.mass(p) * (v[0].to_f64().abs() + v[1].to_f64().abs())
                 })
                 .sum::<f64>()
@@ -522,10 +559,7 @@ fn run<S: Scalar>(
     clamp: bool,
     gravity: bool,
     sleep: bool,
-) -> Result<(), TestCaseError>
-where
-    stiffspring::length::Exact: stiffspring::length::LengthKernel<S>,
-{
+) -> Result<(), TestCaseError> {
     let policy = if clamp {
         LimitPolicy::Clamp
     } else {
@@ -546,7 +580,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
-    fn f64_scenes_values_and_knobs_keep_their_invariants(
+    fn f64_scenes_and_knobs_keep_their_invariants(
         ops in prop::collection::vec(op(), 1..150),
         stepper in stepper(),
         (clamp, gravity, sleep) in (any::<bool>(), any::<bool>(), any::<bool>()),
@@ -555,7 +589,7 @@ proptest! {
     }
 
     #[test]
-    fn f32_scenes_values_and_knobs_keep_their_invariants(
+    fn f32_scenes_and_knobs_keep_their_invariants(
         ops in prop::collection::vec(op(), 1..150),
         stepper in stepper(),
         (clamp, gravity, sleep) in (any::<bool>(), any::<bool>(), any::<bool>()),
@@ -564,7 +598,7 @@ proptest! {
     }
 
     #[test]
-    fn i16f16_scenes_values_and_knobs_keep_their_invariants(
+    fn i16f16_scenes_and_knobs_keep_their_invariants(
         ops in prop::collection::vec(op(), 1..150),
         stepper in stepper(),
         (clamp, gravity, sleep) in (any::<bool>(), any::<bool>(), any::<bool>()),

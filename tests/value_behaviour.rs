@@ -1,22 +1,21 @@
-//! Behaviour of `SpringValue` and `SpringBatch` in every backend (`f32`, `f64`, `I16F16`,
-//! `I32F32`): retargeting, rest, settling time, N-D and batch equivalence, `set_dt`,
-//! symmetry, and (with proptest, host only) that stepping never produces NaN/Inf in
-//! floats and never wraps in fixed point.
+//! Behaviour of `SpringValue` in every backend (`f32`, `f64`, `I16F16`, `I32F32`):
+//! retargeting (near and far from the origin), the exact start of releases and flings,
+//! retuning to another time step, rest and its threshold, the `Motion` a step reports,
+//! N-D values, symmetry, and (with proptest, host only) that stepping never produces
+//! NaN or infinity in floats and never wraps in fixed point.
 //!
 //! Expected values come from the continuous solution of the damped oscillator written out
-//! below ([`Continuous`]), from the eigenvalues of the step map computed here
-//! ([`dominant_pole`]), from exact integer arithmetic ([`check_fixed_step`]), or from the
-//! documented contract; none is copied from a run.
+//! below ([`Continuous`]) or in `lab::reference`, from the eigenvalues of the step map
+//! computed here ([`dominant_pole`]), from the study's bit-exact integer model of the
+//! fixed-point step (`lab::precision::Kept`), or from the documented contract; none is
+//! copied from a run.
 //!
-//! `cargo test --test value_behaviour -- --nocapture settle` prints the measured
-//! steps-to-rest table.
+//! `cargo test --release --test value_behaviour -- --nocapture` prints the measured
+//! steps-to-rest table and the motion left when a value settles.
 
+use lab::reference::analytic;
 use std::f64::consts::TAU;
-use stiffspring::kernel::Coefficients;
-use stiffspring::{
-    AndroidDamping, AndroidStiffness, Error, I16F16, I32F32, Oscillator, Parameter,
-    ReactSpringPreset, RestThreshold, Scalar, SpringBatch, SpringValue, SwiftUiPreset, Tuning,
-};
+use stiffspring::{I16F16, I32F32, Motion, Oscillator, RestThreshold, Scalar, SpringValue, Tuning};
 
 const DT60: f64 = 1.0 / 60.0;
 const DT120: f64 = 1.0 / 120.0;
@@ -57,14 +56,16 @@ fn eps<S: Scalar>() -> f64 {
     }
 }
 
-/// The relative precision of a backend's coefficients (`C_k`, `1 − C_d` as stored):
-/// the float format itself, Q3.29 and Q3.61 for the fixed-point backends.
-fn coef_eps<S: Scalar>() -> f64 {
-    match S::NAME {
-        "f32" => f32::EPSILON as f64,
-        "I16F16" => 2f64.powi(-29),
-        _ => f64::EPSILON,
-    }
+fn sampled(frequency: f64, zeta: f64, dt: f64) -> Tuning {
+    Tuning::from_frequency(frequency, zeta, dt).expect("valid")
+}
+
+fn raw(ck: f64, cd: f64, dt: f64) -> Tuning {
+    Tuning::from_coefficients(ck, cd, dt).expect("in the square")
+}
+
+fn value<S: Scalar, const D: usize>(p: [f64; D], tuning: &Tuning) -> SpringValue<S, D> {
+    SpringValue::new(p.map(s), tuning).expect("representable")
 }
 
 // ---------------------------------------------------------------------------
@@ -87,46 +88,25 @@ impl Continuous {
         }
     }
 
-    /// `(y(t), y'(t))` from `y(0) = y0`, `y'(0) = v0`; `t` may be negative.
+    /// `(y(t), y'(t))` from `y(0) = y0`, `y'(0) = v0`.
     fn at(&self, y0: f64, v0: f64, t: f64) -> (f64, f64) {
-        let (w, z) = (self.omega, self.zeta);
-        let sigma = z * w;
-        if z < 1.0 {
-            let wd = w * ((1.0 - z) * (1.0 + z)).sqrt();
-            let (sn, cs) = (wd * t).sin_cos();
-            let e = (-sigma * t).exp();
-            let b = (v0 + sigma * y0) / wd;
-            (
-                e * (y0 * cs + b * sn),
-                e * (v0 * cs - (sigma * v0 + w * w * y0) / wd * sn),
-            )
-        } else if z == 1.0 {
-            let e = (-w * t).exp();
-            let b = v0 + w * y0;
-            (e * (y0 + b * t), e * (b - w * (y0 + b * t)))
-        } else {
-            let q = ((z - 1.0) * (z + 1.0)).sqrt();
-            let (r1, r2) = (-w * (z - q), -w * (z + q));
-            let b = (v0 - r1 * y0) / (r2 - r1);
-            let a = y0 - b;
-            let (e1, e2) = ((r1 * t).exp(), (r2 * t).exp());
-            (a * e1 + b * e2, a * r1 * e1 + b * r2 * e2)
-        }
+        analytic(y0, v0, self.omega, self.zeta, t)
     }
 
-    /// `(P, Q)` with `u = y(0) − y(−h) = P·y0 + Q·v0`: the step velocity of the sampled
-    /// trajectory through `(y0, v0)`.
-    fn start_weights(&self, h: f64) -> (f64, f64) {
-        let (from_offset, _) = self.at(1.0, 0.0, -h);
-        let (from_velocity, _) = self.at(0.0, 1.0, -h);
-        (1.0 - from_offset, -from_velocity)
+    /// The largest `|y(t)|` for `t ≥ 0` from `(y0, v0)`: the motion left. Sampled 4096
+    /// times over two periods, which hold the largest swing (the envelope decays; an
+    /// overdamped spring peaks within a time constant `1/ω`).
+    fn motion_left(&self, y0: f64, v0: f64) -> f64 {
+        let span = 2.0 * TAU / self.omega;
+        (0..=4096)
+            .map(|i| self.at(y0, v0, i as f64 * span / 4096.0).0.abs())
+            .fold(0.0, f64::max)
     }
 }
 
-/// The dominant eigenvalue of one step on `(x, u)`:
-/// `u' = r·u − C_k·x`, `x' = x + u'`, i.e. `M = [[1 − C_k, r], [−C_k, r]]` with
-/// `r = 1 − C_d`. Returns `(ρ, c)`: its magnitude, and `|1 − 1/λ|`, the ratio `|u|/|x|`
-/// in that mode (`u_n = x_n − x_{n−1}`).
+/// The dominant eigenvalue of one step on `(x, u)`: `u' = r·u − C_k·x`, `x' = x + u'`,
+/// i.e. `M = [[1 − C_k, r], [−C_k, r]]` with `r = 1 − C_d`. Returns `(ρ, c)`: its
+/// magnitude, and `|1 − 1/λ|`, the ratio `|u|/|x|` in that mode (`u_n = x_n − x_{n−1}`).
 fn dominant_pole(ck: f64, r: f64) -> (f64, f64) {
     let trace = 1.0 - ck + r;
     let det = r;
@@ -154,143 +134,87 @@ fn spectral_radius_matches_the_eigenvalues_of_the_step_map() {
         (0.04, 0.0),
         (0.9, 0.05),
     ] {
-        let t = Tuning::from_coefficients(ck, cd).unwrap();
+        let t = raw(ck, cd, DT60);
         let (rho, _) = dominant_pole(ck, 1.0 - cd);
         assert!((t.spectral_radius() - rho).abs() < 1e-12, "({ck}, {cd})");
     }
     // Exact map: the poles are e^{s·dt}, so ρ = e^{−ζω·dt} when underdamped.
-    let t = Tuning::from_frequency(2.0, 0.3, DT60).unwrap();
+    let t = sampled(2.0, 0.3, DT60);
     let expected = (-0.3 * TAU * 2.0 * DT60).exp();
     assert!((t.spectral_radius() - expected).abs() < 1e-12);
 }
 
 // ---------------------------------------------------------------------------
-// Tunings used below
+// Retargeting
 // ---------------------------------------------------------------------------
 
-/// Every UI preset: SwiftUI's, react-spring's, and Android stiffness × damping.
-fn ui_oscillators() -> Vec<(String, Oscillator)> {
-    let mut all = Vec::new();
-    for p in SwiftUiPreset::ALL {
-        all.push((format!("SwiftUI {p:?}"), p.oscillator()));
-    }
-    for p in ReactSpringPreset::ALL {
-        all.push((format!("react-spring {p:?}"), p.oscillator()));
-    }
-    for k in AndroidStiffness::ALL {
-        for d in AndroidDamping::ALL {
-            let o = Oscillator::android(k.value(), d.value()).unwrap();
-            all.push((format!("Android {k:?}/{d:?}"), o));
-        }
-    }
-    all
-}
-
-fn sampled(frequency: f64, zeta: f64, dt: f64) -> Tuning {
-    Tuning::from_frequency(frequency, zeta, dt).unwrap()
-}
-
-fn raw(ck: f64, cd: f64) -> Tuning {
-    Tuning::from_coefficients(ck, cd).unwrap()
-}
-
-/// Steps `v` until it rests, at most `limit` steps; returns the number of steps.
-fn steps_to_rest<S: Scalar, const D: usize>(v: &mut SpringValue<S, D>, limit: usize) -> usize {
-    let mut n = 0;
-    while !v.is_at_rest() {
-        assert!(n < limit, "{}: not at rest after {limit} steps", S::NAME);
-        v.step();
-        n += 1;
-    }
-    n
-}
-
-// ---------------------------------------------------------------------------
-// Retargeting mid-flight
-// ---------------------------------------------------------------------------
-
-fn raw_retarget_keeps_step_velocity_and_position<S: Scalar>() {
-    // Raw coefficients: the step velocity is the article's v·dt and is kept as it is.
-    for tuning in [raw(0.05, 0.2), raw(0.3, 0.0), Tuning::rigid()] {
-        let mut v = SpringValue::<S, 2>::new([s(0.0), s(10.0)], tuning, DT60).unwrap();
-        v.set_target([s(100.0), s(-20.0)]).unwrap();
-        for _ in 0..7 {
-            v.step();
-        }
-        let (p, u) = (v.position(), v.step_velocity());
-        // A new target within a factor of two of the position (same sign): p − t is
-        // exact (Sterbenz), so the position is kept exactly in floats too.
-        let t = [p[0].sub(s(0.25 * p[0].to_f64())), p[1].add(s(0.5))];
-        v.set_target(t).unwrap();
-        assert!(same_all(v.step_velocity(), u), "{}: u changed", S::NAME);
-        assert!(same_all(v.position(), p), "{}: position moved", S::NAME);
-        assert!(same_all(v.target(), t));
-        // The offset is the position relative to the new target.
-        let expected = [p[0].sub(t[0]), p[1].sub(t[1])];
-        assert!(same_all(v.offset(), expected));
-    }
-}
-
-#[test]
-fn retarget_with_raw_coefficients_keeps_step_velocity_and_position_exactly() {
-    each_backend!(raw_retarget_keeps_step_velocity_and_position);
-}
-
-fn retarget_keeps_position_within_rounding<S: Scalar>() {
-    // Any new target: the value stores x = p − t, so p is reproduced as t + (p − t),
-    // two roundings in floats: |Δp| ≤ ε·(|p − t| + |p|). Exact in fixed point.
+/// The position survives a retarget exactly in fixed point (the offset moves by the exact
+/// change of the target) and to two roundings in floats; with raw coefficients the step
+/// velocity is the article's `v·dt` and is kept exactly.
+fn retarget_keeps_position_and_velocity<S: Scalar>() {
     let targets = [-1.5e-7, 1e-3, -37.0, 1234.567, -9000.25, 3.0e4];
-    for tuning in [sampled(2.0, 0.3, DT60), raw(0.05, 0.2)] {
+    for tuning in [
+        sampled(2.0, 0.3, DT60),
+        raw(0.05, 0.2, DT60),
+        raw(0.3, 0.0, DT60),
+    ] {
+        let exact_map = tuning.oscillator().is_some();
         for &t in &targets {
-            let mut v = SpringValue::<S, 1>::new([s(1.0)], tuning, DT60).unwrap();
-            v.set_target([s(70.0)]).unwrap();
+            let mut v = value::<S, 1>([1.0], &tuning);
+            v.set_target([s(70.0)]);
             for _ in 0..5 {
-                v.step();
+                v.advance();
             }
-            let p = v.position()[0].to_f64();
-            v.set_target([s(t)]).unwrap();
-            let after = v.position()[0].to_f64();
-            let t = s::<S>(t).to_f64();
-            let bound = eps::<S>() * ((p - t).abs() + p.abs());
+            let (p, u) = (v.position()[0], v.step_velocity()[0]);
+            v.set_target([s(t)]);
+            let (after, t) = (v.position()[0].to_f64(), s::<S>(t));
+            let bound = 2.0 * eps::<S>() * ((p.to_f64() - t.to_f64()).abs() + p.to_f64().abs());
             assert!(
-                (after - p).abs() <= bound,
-                "{}: target {t}: {p} became {after}",
+                (after - p.to_f64()).abs() <= bound,
+                "{}: target {t:?}: {p:?} became {after}",
                 S::NAME
             );
+            assert!(same(v.target()[0], t));
+            if S::RESOLUTION > 0.0 {
+                assert!(same(v.position()[0], p), "{}", S::NAME);
+            }
+            if !exact_map {
+                assert!(v.step_velocity()[0] == u, "{}: u changed", S::NAME);
+            }
         }
     }
 }
 
 #[test]
-fn retarget_keeps_position_up_to_float_rounding_and_exactly_in_fixed_point() {
-    each_backend!(retarget_keeps_position_within_rounding);
+fn retarget_keeps_the_position_and_a_raw_step_velocity() {
+    each_backend!(retarget_keeps_position_and_velocity);
 }
 
-fn sampled_retarget_keeps_continuous_velocity<S: Scalar>() {
-    // With the exact map the velocity v (units/s) of the continuous trajectory is kept:
-    // u changes by P·Δx, with P from the continuous solution.
+/// With the exact map the velocity (units/s) of the continuous trajectory is kept: the
+/// step velocity changes by `P·Δx`, with `P` from the continuous solution.
+fn retarget_keeps_the_continuous_velocity<S: Scalar>() {
+    // The relative precision of the backend's factors (31-/63-bit mantissas in fixed point).
+    let factor_eps = match S::NAME {
+        "f32" => 2f64.powi(-24),
+        "f64" => 2f64.powi(-53),
+        "I16F16" => 2f64.powi(-31),
+        _ => 2f64.powi(-63),
+    };
     for (freq, zeta) in [(2.0, 0.3), (1.5, 1.0), (3.0, 2.0)] {
-        let tuning = sampled(freq, zeta, DT60);
-        let (p_weight, q_weight) = Continuous::new(freq, zeta).start_weights(DT60);
-        let mut v = SpringValue::<S, 1>::new([s(0.0)], tuning, DT60).unwrap();
-        v.set_target([s(100.0)]).unwrap();
+        let (p_weight, q_weight) = Oscillator::new(freq, zeta)
+            .expect("valid")
+            .start_weights(DT60);
+        let mut v = value::<S, 1>([0.0], &sampled(freq, zeta, DT60));
+        v.set_target([s(100.0)]);
         for _ in 0..6 {
-            v.step();
+            v.advance();
         }
         let (x, u, vel) = (v.offset()[0], v.step_velocity()[0], v.velocity()[0]);
-        let (p, t_new) = (v.position()[0], s::<S>(-40.0));
-        v.set_target([t_new]).unwrap();
+        v.set_target([s(-40.0)]);
         let (x2, u2, vel2) = (v.offset()[0], v.step_velocity()[0], v.velocity()[0]);
         let delta = x2.to_f64() - x.to_f64();
-        if S::RESOLUTION > 0.0 {
-            // Exact in fixed point (floats: see retarget_keeps_position_within_rounding).
-            assert!(same(v.position()[0], p), "{}: position moved", S::NAME);
-        }
-        // u₂ − u = P·Δ, up to one rounding of u₂ and the backend's rounding of C_k and
-        // 1 − C_d, from which the library recovers P.
         let scale = u.to_f64().abs() + (p_weight * delta).abs();
-        let tol = 4.0 * (eps::<S>() * scale + S::RESOLUTION)
-            + 1e3 * coef_eps::<S>() * (p_weight * delta).abs();
+        let tol = 4.0 * (eps::<S>() * scale + S::RESOLUTION) + 64.0 * factor_eps * scale;
         let shift = u2.to_f64() - u.to_f64();
         assert!(
             (shift - p_weight * delta).abs() <= tol,
@@ -298,7 +222,6 @@ fn sampled_retarget_keeps_continuous_velocity<S: Scalar>() {
             S::NAME,
             p_weight * delta
         );
-        // The velocity (u − P·x)/Q is kept to the same accuracy, divided by Q.
         let vtol = 2.0 * tol / q_weight + 4.0 * eps::<S>() * vel.to_f64().abs();
         assert!(
             (vel2.to_f64() - vel.to_f64()).abs() <= vtol,
@@ -310,36 +233,36 @@ fn sampled_retarget_keeps_continuous_velocity<S: Scalar>() {
 
 #[test]
 fn retarget_with_the_exact_map_keeps_the_continuous_velocity() {
-    each_backend!(sampled_retarget_keeps_continuous_velocity);
+    each_backend!(retarget_keeps_the_continuous_velocity);
 }
 
-/// Tolerance on positions of magnitude ~100 after ~100 steps, per backend: accumulated
-/// rounding (float ε or one LSB per step) plus the rounding of the coefficients.
+/// Tolerance on positions of magnitude ~100 after ~100 steps, per backend.
 fn trajectory_tolerance<S: Scalar>() -> f64 {
     match S::NAME {
         "f64" => 1e-9,
-        "f32" => 2e-3,
-        "I16F16" => 1e-2,
-        _ => 1e-6,
+        "f32" => 1e-4,
+        "I16F16" => 1e-4,
+        _ => 1e-8,
     }
 }
 
-fn follows_continuous_trajectory<S: Scalar>() {
+/// A value released toward a target samples the continuous spring released at that
+/// instant, exactly at every step; retargeted mid-flight, it samples the continuous
+/// spring whose target jumped there, keeping its position and velocity.
+fn follows_the_continuous_spring<S: Scalar>() {
     for (freq, zeta) in [(2.0, 0.3), (1.5, 1.0), (1.0, 2.5)] {
         let osc = Continuous::new(freq, zeta);
-        let mut v = SpringValue::<S, 1>::new([s(0.0)], sampled(freq, zeta, DT60), DT60).unwrap();
+        let mut v = value::<S, 1>([0.0], &sampled(freq, zeta, DT60));
         let tol = trajectory_tolerance::<S>();
-        // Released from rest at 0 toward 100: y = p − 100 starts at −100 with v = 0.
-        v.set_target([s(100.0)]).unwrap();
+        v.set_target([s(100.0)]);
         for n in 1..=20 {
-            v.step();
+            v.advance();
             let (y, dy) = osc.at(-100.0, 0.0, n as f64 * DT60);
             let p = v.position()[0].to_f64();
             assert!(
                 (p - (100.0 + y)).abs() < tol,
-                "{} ζ={zeta} step {n}: {p} vs {}",
-                S::NAME,
-                100.0 + y
+                "{} ζ={zeta} step {n}: {p}",
+                S::NAME
             );
             let vel = v.velocity()[0].to_f64();
             assert!(
@@ -348,17 +271,15 @@ fn follows_continuous_trajectory<S: Scalar>() {
                 S::NAME
             );
         }
-        // Mid-flight retarget to −50: the continuous spring whose target jumps keeps
-        // its position and velocity, y restarts from p + 50.
         let (y20, v20) = osc.at(-100.0, 0.0, 20.0 * DT60);
-        v.set_target([s(-50.0)]).unwrap();
+        v.set_target([s(-50.0)]);
         for n in 1..=80 {
-            v.step();
+            v.advance();
             let (y, _) = osc.at(100.0 + y20 + 50.0, v20, n as f64 * DT60);
             let p = v.position()[0].to_f64();
             assert!(
                 (p - (-50.0 + y)).abs() < tol,
-                "{} ζ={zeta} step {n} after retarget: {p} vs {}",
+                "{} ζ={zeta} step {n} after the retarget: {p} vs {}",
                 S::NAME,
                 -50.0 + y
             );
@@ -368,499 +289,156 @@ fn follows_continuous_trajectory<S: Scalar>() {
 
 #[test]
 fn exact_map_value_follows_the_continuous_spring_across_a_retarget() {
-    each_backend!(follows_continuous_trajectory);
+    each_backend!(follows_the_continuous_spring);
 }
 
+/// Issue 11: `set_target` in `f32` far from the origin used to rebuild the offset from
+/// the rounded position, losing up to half an ulp of it at every retarget: 1.8e−5 of a
+/// unit move at 1000 and 3.7e−3 at 1e5. The offset now moves by the change of the target,
+/// so the position is kept to the bit and the motion after the retarget is the one an
+/// `f64` value computes, to the precision of an offset (about 1e−7 of the move).
 #[test]
-fn retarget_of_a_heavily_overdamped_undersampled_value_stays_finite() {
-    // ζ = 2 at ω·dt = 8.5: P = 1 − x(−dt)/x₀ ≈ 4.6e12 (the fast mode, extrapolated one
-    // step back). A retarget by 1e27 would ask for u ≈ 5e39, beyond f32::MAX; the value
-    // must still stay finite (SAFE_MAGNITUDE leaves headroom "so that the transient
-    // growth of a stable spring can never reach infinity").
+fn f32_far_from_the_origin_retargets_without_losing_the_motion() {
+    let tuning = sampled(2.0, 0.3, DT60);
+    for origin in [1e3, 1e5] {
+        let mut a = value::<f32, 1>([origin], &tuning);
+        let mut b = value::<f64, 1>([origin], &tuning);
+        a.set_target([(origin + 1.0) as f32]);
+        b.set_target([origin + 1.0]);
+        let mut worst = 0.0f64;
+        for n in 0..200 {
+            if n % 7 == 3 {
+                // A retarget every few frames, mid-flight, up and down by a unit.
+                let t = origin + if n % 2 == 0 { 2.0 } else { -1.0 };
+                let before = a.position();
+                a.set_target([t as f32]);
+                b.set_target([t]);
+                assert_eq!(a.position(), before, "at {origin}: the position moved");
+            }
+            a.advance();
+            b.advance();
+            let offset = f64::from(a.offset()[0]) - b.offset()[0];
+            worst = worst.max(offset.abs());
+        }
+        println!("f32 at {origin}: worst offset error {worst:.1e} of a unit move");
+        assert!(worst < 1e-6, "at {origin}: {worst:e}");
+    }
+}
+
+/// A retarget of a heavily overdamped, undersampled spring (ζ = 2 at ω·dt = 8.5, whose
+/// exact start extrapolates one step back by a factor `P ≈ 5·10¹²`; ζ = 13 at f·dt = 1.4,
+/// whose step velocity `ũ/(1 − C_d)` is 10¹⁰⁰ times its kept one) across the whole float
+/// range: the infallible setters saturate what the state cannot hold, every read stays
+/// finite (saturating at `±Scalar::MAX`), and the value comes to rest.
+fn extreme_retargets_stay_finite<S: Scalar>() {
     let f = 8.5 / TAU / DT60;
-    let (p_weight, _) = Continuous::new(f, 2.0).start_weights(DT60);
-    assert!(p_weight > 1e12);
-    let t = sampled(f, 2.0, DT60);
-    let mut v = SpringValue::<f32, 1>::new([1e27], t, DT60).unwrap();
-    v.set_target([0.0]).unwrap();
-    let mut w = SpringValue::<f64, 1>::new([1e300], t, DT60).unwrap();
-    w.set_target([-1e300]).unwrap();
-    for _ in 0..2000 {
-        assert!(v.position()[0].is_finite() && v.step_velocity()[0].is_finite());
-        assert!(w.position()[0].is_finite() && w.step_velocity()[0].is_finite());
-        v.step();
-        w.step();
-    }
-    assert!(v.is_at_rest() && w.is_at_rest());
-}
-
-// ---------------------------------------------------------------------------
-// Rest
-// ---------------------------------------------------------------------------
-
-#[derive(Debug, PartialEq)]
-struct State<S, const D: usize> {
-    position: [S; D],
-    target: [S; D],
-    offset: [S; D],
-    step_velocity: [S; D],
-    velocity: [S; D],
-    at_rest: bool,
-}
-
-fn state<S: Scalar, const D: usize>(v: &SpringValue<S, D>) -> State<S, D> {
-    State {
-        position: v.position(),
-        target: v.target(),
-        offset: v.offset(),
-        step_velocity: v.step_velocity(),
-        velocity: v.velocity(),
-        at_rest: v.is_at_rest(),
-    }
-}
-
-fn rest_is_exact_and_stable<S: Scalar>() {
     let tunings = [
-        sampled(2.0, 0.3, DT60),
-        sampled(4.0, 1.0, DT60),
-        raw(0.05, 0.3),
-        raw(0.5, 0.01),
-        Tuning::rigid(),
+        sampled(f, 2.0, DT60),
+        sampled(14.5, 13.0, 0.098),
+        sampled(3.0, 0.0, DT60),
+        Tuning::rigid(DT60).expect("dt"),
     ];
     for tuning in tunings {
-        let mut v = SpringValue::<S, 2>::new([s(10.0), s(-3.0)], tuning, DT60).unwrap();
-        assert!(v.is_at_rest(), "a new value is at rest");
-        let target = [s(37.25), s(-81.5)];
-        v.set_target(target).unwrap();
-        assert!(!v.is_at_rest());
-        steps_to_rest(&mut v, 100_000);
-        // Snapped exactly.
+        let top = s::<S>(S::MAX);
+        let mut v = SpringValue::<S>::new([top], &tuning).expect("representable");
+        v.set_target([top.neg()]);
+        v.fling([top]);
+        for n in 0..2000 {
+            let all = [
+                v.position()[0],
+                v.offset()[0],
+                v.step_velocity()[0],
+                v.velocity()[0],
+            ];
+            assert!(
+                all.iter().all(|c| c.to_f64().is_finite()),
+                "{} step {n}: {all:?}",
+                S::NAME
+            );
+            let _ = v.step();
+        }
+        if tuning.damping() > 0.0 {
+            assert!(v.is_at_rest(), "{} {tuning:?}", S::NAME);
+        }
+    }
+}
+
+#[test]
+fn extreme_retargets_saturate_and_stay_finite() {
+    extreme_retargets_stay_finite::<f32>();
+    extreme_retargets_stay_finite::<f64>();
+}
+
+// ---------------------------------------------------------------------------
+// Exact starts
+// ---------------------------------------------------------------------------
+
+/// Issue 11: `I16F16` refused a ζ = 10 fling at 60 Hz for a 5 Hz spring (its exact start
+/// asked for `u₀ ≈ 34 000`). The value keeps `(1 − C_d)·u₀` instead, which is of the order
+/// of the amplitude: the fling is accepted and every sample is on the continuous
+/// trajectory to the rounding of the read position.
+#[test]
+fn i16f16_flings_a_heavily_overdamped_spring_exactly() {
+    let (freq, zeta) = (5.0, 10.0);
+    let omega = TAU * freq;
+    let mut v = value::<I16F16, 1>([0.0], &sampled(freq, zeta, DT60));
+    v.try_fling([I16F16::from_num(omega)])
+        .expect("representable");
+    let mut moved = 0.0f64;
+    for n in 1..=120 {
+        v.advance();
+        let (x, _) = analytic(0.0, omega, omega, zeta, n as f64 * DT60);
+        let p = v.position()[0].to_f64();
         assert!(
-            same_all(v.position(), target),
-            "{}: {:?}",
-            S::NAME,
-            v.position()
+            (p - x).abs() <= 2.0 * I16F16::RESOLUTION,
+            "step {n}: {p} vs {x}"
         );
-        assert!(same_all(v.offset(), [S::ZERO; 2]));
-        assert!(same_all(v.step_velocity(), [S::ZERO; 2]));
-        assert_eq!(f(v.velocity()), [0.0; 2]);
-        // Stepping a value at rest changes nothing.
-        let before = state(&v);
-        for _ in 0..100 {
-            v.step();
-        }
-        assert_eq!(state(&v), before);
-        // Retargeting to where it already is moves nothing, so it stays at rest.
-        v.set_target(target).unwrap();
-        assert_eq!(state(&v), before);
-        // A real retarget wakes it; the first step moves the first component toward
-        // the new target and leaves the second (Δ = 0, u = 0) exactly where it is.
-        v.set_target([s(0.0), s(-81.5)]).unwrap();
-        assert!(!v.is_at_rest());
-        v.step();
-        let p = f(v.position());
-        assert!(p[0] < 37.25 && p[0] >= -37.25, "{}: {p:?}", S::NAME);
-        assert_eq!(p[1], -81.5);
+        moved = moved.max(p.abs());
     }
+    assert!(moved > 0.01);
 }
 
+/// Issue 10: `f64` with ζ = 300 at f·dt = 0.2 lost a fling (`x(dt) = 0` against 1.3e−4).
+/// Its exact start `u₀` is `e^{2ζω·dt}` ≈ 10³²⁷ times too large for `f64`; the kept
+/// velocity is not, and the first step lands on the continuous trajectory.
 #[test]
-fn at_rest_the_value_sits_exactly_on_its_target_and_stays() {
-    each_backend!(rest_is_exact_and_stable);
-}
-
-/// The predicted number of steps to rest from an offset `amplitude`: the slowest mode
-/// decays by ρ per step, and rest needs both |x| ≤ p and |u| ≤ u_max, where |u| ≈ c·|x|
-/// in that mode. So the envelope must fall to min(p, u_max/c):
-/// n* = ln(min(p, u_max/c) / amplitude) / ln ρ.
-fn predicted_steps(tuning: &Tuning, p: f64, u_max: f64, amplitude: f64) -> f64 {
-    let (rho, c) = dominant_pole(tuning.stiffness(), tuning.retention());
-    let threshold = if c > 0.0 { p.min(u_max / c) } else { p };
-    (threshold / amplitude).ln() / rho.ln()
-}
-
-fn settles_within_the_predicted_time<S: Scalar>(table: &mut Vec<String>) {
-    let threshold = RestThreshold::default();
-    for dt in [DT60, DT120] {
-        for (name, osc) in ui_oscillators() {
-            let tuning = osc.tuning(dt).unwrap();
-            let mut v = SpringValue::<S, 1>::new([s(0.0)], tuning, dt).unwrap();
-            v.set_target([s(100.0)]).unwrap();
-            let n = steps_to_rest(&mut v, 100_000);
-            assert!(same_all(v.position(), [s(100.0)]));
-            // The band actually used: the threshold, widened in fixed point to the dead
-            // band (rest_offset); the step velocity threshold is v·dt (≥ 1 LSB).
-            let p = v.rest_offset().to_f64().max(threshold.position());
-            let u_max = (threshold.velocity() * dt).max(S::RESOLUTION);
-            let n_star = predicted_steps(&v.tuning(), p, u_max, 100.0);
-            // The initial amplitude of the slow mode is 100 times a factor of order one
-            // (eigenvector conditioning, the critical double pole's n·ρⁿ): allow a factor
-            // 2 plus 20 steps above, a factor 1/3 below.
-            let (lo, hi) = (n_star / 3.0, 2.0 * n_star + 20.0);
-            table.push(format!(
-                "{:7} {:4.0} Hz  {:38} n = {n:5}  n* = {n_star:7.1}  n/n* = {:.2}",
-                S::NAME,
-                1.0 / dt,
-                name,
-                n as f64 / n_star
-            ));
-            assert!(
-                (n as f64) >= lo && (n as f64) <= hi,
-                "{} {name} at {:.0} Hz: {n} steps, predicted {n_star:.1}",
-                S::NAME,
-                1.0 / dt
-            );
+fn f64_flings_an_extremely_overdamped_spring_exactly() {
+    let (freq, dt, zeta, v0) = (2.0, 0.1, 300.0, 1.0);
+    let omega = TAU * freq;
+    let mut v = value::<f64, 1>([0.0], &sampled(freq, zeta, dt));
+    v.try_fling([v0]).expect("representable");
+    for n in 1..=50 {
+        v.advance();
+        let (x, _) = analytic(0.0, v0, omega, zeta, n as f64 * dt);
+        if n == 1 {
+            assert!((x - 1.3e-4).abs() < 0.05e-4, "{x}");
         }
-    }
-}
-
-#[test]
-fn settle_every_ui_preset_in_every_backend_within_the_decay_bound() {
-    let mut table = Vec::new();
-    each_backend!(settles_within_the_predicted_time, &mut table);
-    println!("steps to rest from an offset of 100, default threshold:");
-    for line in &table {
-        println!("{line}");
-    }
-}
-
-/// The largest offset (in LSB) at which a fixed-point spring with zero velocity does not
-/// move at all: measured on the kernel, whatever its rounding.
-fn measured_dead_band<S: Scalar>(tuning: &Tuning) -> f64 {
-    let c = Coefficients::<S>::new(tuning);
-    let ck = S::coef_to_f64(c.stiffness());
-    let lsb = S::RESOLUTION;
-    let mut n = 0.0;
-    while n < 4.0 / ck + 4.0 {
-        let x = s::<S>((n + 1.0) * lsb);
-        if c.respond(x, S::ZERO) != S::ZERO {
-            break;
-        }
-        n += 1.0;
-    }
-    n
-}
-
-fn fixed_point_settles_with_a_tiny_threshold<S: Scalar>(table: &mut Vec<String>) {
-    let tiny = RestThreshold::new(1e-9, 1e-9).unwrap();
-    let lsb = S::RESOLUTION;
-    for dt in [DT60, DT120] {
-        for (name, osc) in ui_oscillators() {
-            let tuning = osc.tuning(dt).unwrap();
-            let mut v = SpringValue::<S, 1>::new([s(0.0)], tuning, dt)
-                .unwrap()
-                .with_rest_threshold(tiny);
-            let ck = v.tuning().stiffness();
-            let rest = v.rest_offset().to_f64();
-            // The documented widening covers at least half an LSB of response...
-            assert!(rest >= 0.5 / ck * lsb, "{} {name}: {rest}", S::NAME);
-            // ...and in fact the whole measured dead band of the kernel.
-            let dead = measured_dead_band::<S>(&v.tuning());
-            assert!(
-                rest >= dead * lsb,
-                "{} {name}: rest offset {rest} < dead band {dead} LSB",
-                S::NAME
-            );
-            for start in [100.0, -3.0, 0.01] {
-                v.set_position([s(start)]).unwrap();
-                let n = steps_to_rest(&mut v, 1_000_000);
-                assert!(same_all(v.position(), [S::ZERO]));
-                if start == 100.0 {
-                    table.push(format!(
-                        "{:7} {:4.0} Hz  {name:38} n = {n:5}  dead band {dead:6.0} LSB, rest offset {:8.1} LSB",
-                        S::NAME,
-                        1.0 / dt,
-                        rest / lsb
-                    ));
-                }
-            }
-        }
-    }
-}
-
-#[test]
-fn settle_in_fixed_point_even_with_a_tiny_threshold() {
-    let mut table = Vec::new();
-    fixed_point_settles_with_a_tiny_threshold::<I16F16>(&mut table);
-    fixed_point_settles_with_a_tiny_threshold::<I32F32>(&mut table);
-    println!("steps to rest from 100 with RestThreshold::new(1e-9, 1e-9):");
-    for line in &table {
-        println!("{line}");
+        let p = v.position()[0];
+        assert!((p - x).abs() <= 1e-12 * x.abs(), "step {n}: {p:e} vs {x:e}");
     }
 }
 
 // ---------------------------------------------------------------------------
-// N-D values and batches
+// Another time step
 // ---------------------------------------------------------------------------
 
-fn three_d_equals_three_1d<S: Scalar>() {
-    let starts = [3.0, -40.0, 0.5];
-    let targets = [100.0, 12.5, -7.25];
-    let flings = [0.0, 30.0, -200.0];
-    let tunings = [
-        SwiftUiPreset::Bouncy.oscillator().tuning(DT60).unwrap(),
-        ReactSpringPreset::Molasses
-            .oscillator()
-            .tuning(DT120)
-            .unwrap(),
-        raw(0.02, 0.1),
-    ];
-    for tuning in tunings {
-        let mut v3 = SpringValue::<S, 3>::new(starts.map(s), tuning, DT60).unwrap();
-        v3.set_target(targets.map(s)).unwrap();
-        v3.fling(flings.map(s)).unwrap();
-        let mut v1: Vec<SpringValue<S, 1>> = (0..3)
-            .map(|k| {
-                let mut v = SpringValue::new([s(starts[k])], tuning, DT60).unwrap();
-                v.set_target([s(targets[k])]).unwrap();
-                v.fling([s(flings[k])]).unwrap();
-                v
-            })
-            .collect();
-        let mut rest_step = [None; 3];
-        let mut compared = 0;
-        for n in 1..100_000 {
-            v3.step();
-            for (k, v) in v1.iter_mut().enumerate() {
-                v.step();
-                if v.is_at_rest() && rest_step[k].is_none() {
-                    rest_step[k] = Some(n);
-                }
-            }
-            if rest_step.iter().all(Option::is_none) {
-                // While every 1-D value moves, the 3-D value is the same, bit for bit.
-                for (k, v) in v1.iter().enumerate() {
-                    assert!(same(v3.offset()[k], v.offset()[0]), "{} step {n}", S::NAME);
-                    assert!(same(v3.step_velocity()[k], v.step_velocity()[0]));
-                    assert!(same(v3.position()[k], v.position()[0]));
-                }
-                compared += 1;
-            }
-            if v3.is_at_rest() {
-                // It rests only once every component has reached its band, so never
-                // before the last 1-D value.
-                let last = rest_step.iter().map(|r| r.unwrap_or(usize::MAX)).max();
-                assert!(
-                    Some(n) >= last,
-                    "{}: 3-D at rest at {n}, 1-D at {rest_step:?}",
-                    S::NAME
-                );
-                assert!(same_all(v3.position(), targets.map(s)));
-                break;
-            }
-        }
-        assert!(v3.is_at_rest());
-        assert!(compared > 10, "{}: compared only {compared} steps", S::NAME);
-    }
-}
-
-#[test]
-fn a_3d_value_is_three_1d_values_bit_for_bit() {
-    each_backend!(three_d_equals_three_1d);
-}
-
-fn batch_member_equals_standalone<S: Scalar>() {
-    let tunings = [
-        SwiftUiPreset::Snappy.oscillator().tuning(DT60).unwrap(),
-        raw(0.05, 0.25),
-        Tuning::rigid(),
-        ReactSpringPreset::Wobbly.oscillator().tuning(DT60).unwrap(),
-        sampled(1.0, 2.0, DT60),
-    ];
-    let starts = [
-        [0.0, 1.0],
-        [5.0, -5.0],
-        [-20.0, 3.5],
-        [100.0, 0.0],
-        [0.25, -0.75],
-    ];
-    let mut batch = SpringBatch::<S, 8, 2>::new(DT60).unwrap();
-    let mut alone: Vec<SpringValue<S, 2>> = Vec::new();
-    for (i, (t, p)) in tunings.iter().zip(starts.iter()).enumerate() {
-        assert_eq!(batch.push(p.map(s), *t), Ok(i));
-        alone.push(SpringValue::new(p.map(s), *t, DT60).unwrap());
-    }
-    // The same calls on both, at the same steps (never a retarget to the current
-    // target, see batch_retarget_to_the_current_target_keeps_a_resting_member_asleep).
-    let script = |n: usize, b: &mut SpringBatch<S, 8, 2>, a: &mut [SpringValue<S, 2>]| {
-        let target =
-            |i: usize, t: [f64; 2], b: &mut SpringBatch<S, 8, 2>, a: &mut [SpringValue<S, 2>]| {
-                b.set_target(i, t.map(s)).unwrap();
-                a[i].set_target(t.map(s)).unwrap();
-            };
-        let fling =
-            |i: usize, v: [f64; 2], b: &mut SpringBatch<S, 8, 2>, a: &mut [SpringValue<S, 2>]| {
-                b.fling(i, v.map(s)).unwrap();
-                a[i].fling(v.map(s)).unwrap();
-            };
-        match n {
-            0 => {
-                target(0, [50.0, -50.0], b, a);
-                target(2, [20.0, 20.0], b, a);
-                target(3, [-100.0, 8.0], b, a);
-                fling(4, [300.0, -10.0], b, a);
-            }
-            10 => {
-                target(0, [-10.0, 0.0], b, a); // mid-flight
-                fling(3, [-500.0, 500.0], b, a);
-                let t = sampled(3.0, 0.5, DT60);
-                b.set_tuning(2, t).unwrap();
-                a[2].set_tuning(t).unwrap();
-            }
-            40 => target(1, [6.0, 6.0], b, a), // member 1 was resting
-            _ => {}
-        }
-    };
-    for n in 0..5000 {
-        script(n, &mut batch, &mut alone);
-        for (i, a) in alone.iter().enumerate() {
-            assert!(
-                same_all(batch.position(i).unwrap(), a.position()),
-                "{} member {i} step {n}",
-                S::NAME
-            );
-            assert!(same_all(batch.step_velocity(i).unwrap(), a.step_velocity()));
-            assert!(same_all(batch.target(i).unwrap(), a.target()));
-            assert_eq!(
-                batch.is_at_rest(i).unwrap(),
-                a.is_at_rest(),
-                "member {i} step {n}"
-            );
-        }
-        let awake = alone.iter().filter(|a| !a.is_at_rest()).count();
-        assert_eq!(batch.awake(), awake);
-        if n > 40 && awake == 0 {
-            return;
-        }
-        batch.step();
-        for a in alone.iter_mut() {
-            a.step();
-        }
-    }
-    panic!("{}: the batch did not come to rest", S::NAME);
-}
-
-#[test]
-fn a_batch_member_is_a_standalone_value_bit_for_bit() {
-    each_backend!(batch_member_equals_standalone);
-}
-
-fn batch_skips_resting_members<S: Scalar>() {
-    let t = SwiftUiPreset::Smooth.oscillator().tuning(DT60).unwrap();
-    let mut b = SpringBatch::<S, 5>::new(DT60).unwrap();
-    for k in 0..5 {
-        assert_eq!(b.push([s(k as f64)], t), Ok(k));
-    }
-    assert_eq!((b.len(), b.awake()), (5, 0));
-    b.set_target(1, [s(40.0)]).unwrap();
-    b.set_target(3, [s(-40.0)]).unwrap();
-    assert_eq!(b.awake(), 2);
-    let resting: Vec<bool> = (0..5).map(|i| b.is_at_rest(i).unwrap()).collect();
-    assert_eq!(resting, [true, false, true, false, true]);
-    let mut n = 0;
-    while b.awake() > 0 {
-        b.step();
-        n += 1;
-        assert!(n < 10_000);
-        // The resting members never move.
-        for i in [0, 2, 4] {
-            assert!(same_all(b.position(i).unwrap(), [s(i as f64)]));
-        }
-    }
-    assert!(same_all(b.position(1).unwrap(), [s(40.0)]));
-    assert!(same_all(b.position(3).unwrap(), [s(-40.0)]));
-    // Retargeting one resting member wakes exactly that one.
-    let before: Vec<[S; 1]> = (0..5).map(|i| b.position(i).unwrap()).collect();
-    b.set_target(2, [s(-7.0)]).unwrap();
-    assert_eq!(b.awake(), 1);
-    b.step();
-    for (i, p) in before.iter().enumerate() {
-        let moved = !same_all(b.position(i).unwrap(), *p);
-        assert_eq!(moved, i == 2, "{} member {i}", S::NAME);
-        assert_eq!(b.is_at_rest(i).unwrap(), i != 2);
-    }
-}
-
-#[test]
-fn a_batch_steps_only_awake_members_and_a_retarget_wakes_exactly_one() {
-    each_backend!(batch_skips_resting_members);
-}
-
-fn batch_fills_to_capacity<S: Scalar>() {
-    let mut b = SpringBatch::<S, 7, 3>::new(DT120).unwrap();
-    assert!(b.is_empty());
-    for k in 0..7 {
-        assert_eq!(b.push([s(k as f64); 3], raw(0.1, 0.5)), Ok(k));
-        assert_eq!(b.len(), k + 1);
-    }
-    assert_eq!(
-        b.push([S::ZERO; 3], raw(0.1, 0.5)),
-        Err(Error::CapacityFull)
-    );
-    for k in 0..7 {
-        assert!(same_all(b.target(k).unwrap(), [s(k as f64); 3]));
-        assert!(b.is_at_rest(k).unwrap());
-    }
-}
-
-#[test]
-fn a_batch_holds_exactly_its_capacity() {
-    each_backend!(batch_fills_to_capacity);
-}
-
-fn batch_same_target_keeps_rest<S: Scalar>() {
-    let t = raw(0.1, 0.5);
-    let mut b = SpringBatch::<S, 2>::new(DT60).unwrap();
-    b.push([s(3.0)], t).unwrap();
-    let mut v = SpringValue::<S, 1>::new([s(3.0)], t, DT60).unwrap();
-    b.set_target(0, [s(3.0)]).unwrap();
-    v.set_target([s(3.0)]).unwrap();
-    // SpringValue documents that a resting value stays at rest when nothing moved, and
-    // SpringBatch::set_target that it acts "as SpringValue::set_target does".
-    assert!(v.is_at_rest());
-    assert_eq!(b.is_at_rest(0), Ok(true), "{}", S::NAME);
-    assert_eq!(b.awake(), 0);
-}
-
-#[test]
-fn batch_retarget_to_the_current_target_keeps_a_resting_member_asleep() {
-    each_backend!(batch_same_target_keeps_rest);
-}
-
-// ---------------------------------------------------------------------------
-// set_dt
-// ---------------------------------------------------------------------------
-
-fn set_dt_resamples_the_same_oscillator<S: Scalar>() {
+/// The display switches from 60 to 120 Hz: `set_tuning(&t.with_dt(..))` resamples the same
+/// oscillator, keeps the position and the velocity, and the value goes on sampling the
+/// same continuous trajectory.
+fn retune_to_120_hz<S: Scalar>() {
     for (freq, zeta) in [(2.0, 0.3), (1.5, 1.0), (3.0, 2.0)] {
         let osc = Continuous::new(freq, zeta);
         let t60 = sampled(freq, zeta, DT60);
-        let mut v = SpringValue::<S, 1>::new([s(0.0)], t60, DT60).unwrap();
-        v.set_target([s(100.0)]).unwrap();
+        let mut v = value::<S, 1>([0.0], &t60);
+        v.set_target([s(100.0)]);
         for _ in 0..12 {
-            v.step();
+            v.advance();
         }
         let (p, vel) = (v.position(), v.velocity()[0].to_f64());
-        v.set_dt(DT120).unwrap();
-        assert_eq!(v.dt(), DT120);
+        let t120 = t60.with_dt(DT120).expect("valid");
+        assert_eq!(t120.oscillator(), t60.oscillator());
+        v.set_tuning(&t120).expect("representable");
         assert!(same_all(v.position(), p), "{}: position moved", S::NAME);
-        assert!(v.tuning().samples_oscillator());
-        // The same oscillator, up to the rounding of the backend's coefficients.
-        let back = v.tuning().oscillator(DT120).unwrap();
-        let rel = 1e3 * coef_eps::<S>() + 1e-12;
-        assert!(
-            (back.frequency() - freq).abs() <= rel * freq,
-            "{} ζ={zeta}: {} Hz",
-            S::NAME,
-            back.frequency()
-        );
-        assert!(
-            (back.damping_ratio() - zeta).abs() <= rel * zeta.max(1.0),
-            "{}: ζ {}",
-            S::NAME,
-            back.damping_ratio()
-        );
-        // The velocity in units/s is kept (one rounding of u at the new rate).
         let vtol = 4.0 * (eps::<S>() * (vel.abs() + 100.0 / DT120) + S::RESOLUTION / DT120);
         let vel2 = v.velocity()[0].to_f64();
         assert!(
@@ -868,10 +446,9 @@ fn set_dt_resamples_the_same_oscillator<S: Scalar>() {
             "{}: {vel} became {vel2}",
             S::NAME
         );
-        // And the value goes on sampling the same continuous trajectory at 120 Hz.
         let (y12, v12) = osc.at(-100.0, 0.0, 12.0 * DT60);
         for n in 1..=120 {
-            v.step();
+            v.advance();
             let (y, _) = osc.at(y12, v12, n as f64 * DT120);
             let got = v.position()[0].to_f64();
             assert!(
@@ -885,400 +462,163 @@ fn set_dt_resamples_the_same_oscillator<S: Scalar>() {
 }
 
 #[test]
-fn set_dt_from_60_to_120_hz_samples_the_same_oscillator_and_keeps_the_velocity() {
-    each_backend!(set_dt_resamples_the_same_oscillator);
+fn retuning_to_another_rate_samples_the_same_oscillator_and_keeps_the_velocity() {
+    each_backend!(retune_to_120_hz);
 }
 
-fn set_dt_keeps_raw_coefficients<S: Scalar>() {
-    let t = raw(0.05, 0.2);
-    let mut v = SpringValue::<S, 1>::new([s(0.0)], t, DT60).unwrap();
-    v.set_target([s(100.0)]).unwrap();
+/// Raw coefficients keep their per-step meaning at another `dt` (the article): the
+/// coefficients stay, the velocity in units/s is kept, so the step velocity halves at
+/// twice the rate.
+fn retune_raw<S: Scalar>() {
+    let t = raw(0.05, 0.2, DT60);
+    let mut v = value::<S, 1>([0.0], &t);
+    v.set_target([s(100.0)]);
     for _ in 0..5 {
-        v.step();
+        v.advance();
     }
-    let (tuning, u, vel) = (
-        v.tuning(),
-        v.step_velocity()[0].to_f64(),
-        v.velocity()[0].to_f64(),
-    );
-    v.set_dt(DT120).unwrap();
-    // Raw coefficients keep their per-step meaning (the article): unchanged.
-    assert_eq!(v.tuning(), tuning);
-    assert!(!v.tuning().samples_oscillator());
-    // u = v·dt: half the step velocity at twice the rate, the same velocity.
+    let (u, vel) = (v.step_velocity()[0].to_f64(), v.velocity()[0].to_f64());
+    let t2 = t.with_dt(DT120).expect("valid");
+    assert_eq!((t2.stiffness(), t2.damping(), t2.dt()), (0.05, 0.2, DT120));
+    v.set_tuning(&t2).expect("representable");
     let u2 = v.step_velocity()[0].to_f64();
+    let utol = 4.0 * (eps::<S>() * u.abs() + S::RESOLUTION);
+    assert!((u2 - u / 2.0).abs() <= utol, "{}: {u} became {u2}", S::NAME);
+    let vtol = 4.0 * (eps::<S>() * vel.abs() + S::RESOLUTION / DT120);
     assert!(
-        (u2 - u / 2.0).abs() <= eps::<S>() * u.abs() + S::RESOLUTION,
+        (v.velocity()[0].to_f64() - vel).abs() <= vtol,
         "{}",
         S::NAME
     );
-    let vtol = 4.0 * (eps::<S>() * vel.abs() + S::RESOLUTION / DT120);
-    assert!((v.velocity()[0].to_f64() - vel).abs() <= vtol);
 }
 
 #[test]
-fn set_dt_keeps_raw_coefficients_and_the_velocity() {
-    each_backend!(set_dt_keeps_raw_coefficients);
+fn retuning_raw_coefficients_keeps_them_and_the_velocity() {
+    each_backend!(retune_raw);
 }
 
 // ---------------------------------------------------------------------------
-// Symmetry
+// When a value settles
 // ---------------------------------------------------------------------------
 
-fn trajectories_are_symmetric<S: Scalar>() {
-    let tunings = [
-        SwiftUiPreset::Bouncy.oscillator().tuning(DT60).unwrap(),
-        ReactSpringPreset::Molasses
-            .oscillator()
-            .tuning(DT60)
-            .unwrap(),
-        Oscillator::android(10_000.0, 0.2)
-            .unwrap()
-            .tuning(DT60)
-            .unwrap(),
-        raw(0.05, 0.2),
-        raw(0.5, 0.0),
-        Tuning::from_coefficients_extended(1.5, 0.5).unwrap(),
-        Tuning::rigid(),
-    ];
-    let starts = [
-        (100.0, 0.0, 0.0),
-        (37.5, -12.25, 250.0),
-        (-0.001, 3.0, -1.0),
-        (1.0 / 3.0, 0.0, 7.0),
-    ];
-    for tuning in tunings {
-        for (x0, t0, v0) in starts {
-            let mut a = SpringValue::<S, 1>::new([s(x0)], tuning, DT60).unwrap();
-            let mut b = SpringValue::<S, 1>::new([s(-x0)], tuning, DT60).unwrap();
-            a.set_target([s(t0)]).unwrap();
-            b.set_target([s(-t0)]).unwrap();
-            a.fling([s(v0)]).unwrap();
-            b.fling([s(-v0)]).unwrap();
-            for n in 0..20_000 {
-                // Equal as numbers: an exact cancellation gives +0 on both sides in IEEE
-                // arithmetic, so the sign of a zero is not mirrored.
-                let (pa, pb) = (a.position()[0], b.position()[0]);
-                assert!(pb == pa.neg(), "{} step {n}: {pa:?} vs {pb:?}", S::NAME);
-                assert!(b.step_velocity()[0] == a.step_velocity()[0].neg());
-                assert!(b.offset()[0] == a.offset()[0].neg());
-                assert_eq!(a.is_at_rest(), b.is_at_rest());
-                if a.is_at_rest() {
-                    break;
+/// A value settles only when the motion it has left (the largest offset of the continuous
+/// spring through its state, from then on) is below the position threshold, to the factor
+/// `1 + θ/4` of `RestThreshold`'s documentation (`θ = ω·dt`). Issue 11: the offset and
+/// velocity test alone (Android's) let a 1 Hz spring with ζ = 0.1 snap with 6.4e−3 of a
+/// unit move left, 8.5 times the threshold; measured here on the same runs.
+fn settles_with_less_than_the_threshold_left<S: Scalar>(table: &mut Vec<String>) -> f64 {
+    let threshold = RestThreshold::default();
+    let p = threshold.position();
+    let mut android_worst = 0.0f64;
+    for rate in [60.0, 120.0, 1000.0, 10_000.0] {
+        let dt = 1.0 / rate;
+        for (freq, zeta) in [(1.0, 0.1), (0.5, 0.05), (2.0, 0.3), (1.0, 0.7), (3.0, 1.0)] {
+            let osc = Continuous::new(freq, zeta);
+            let tuning = sampled(freq, zeta, dt);
+            let mut v = value::<S, 1>([0.0], &tuning);
+            let never = RestThreshold::new(1e-300, 1e-300).expect("positive");
+            let mut twin = value::<S, 1>([0.0], &tuning).with_rest_threshold(never);
+            v.set_target([s(1.0)]);
+            twin.set_target([s(1.0)]);
+            let mut android = None;
+            let left = loop {
+                let motion = v.step();
+                twin.advance();
+                let (x, vel) = (twin.offset()[0].to_f64(), twin.velocity()[0].to_f64());
+                if android.is_none() && x.abs() < p && vel.abs() < threshold.velocity() {
+                    android = Some(osc.motion_left(x, vel));
                 }
-                a.step();
-                b.step();
-            }
-            // (The undamped raw spring rings forever: compared over 20 000 steps.)
-            let damped = tuning.damping() > 0.0;
-            assert!(
-                a.is_at_rest() || !damped,
-                "{}: {tuning:?} did not settle",
-                S::NAME
-            );
-        }
-    }
-}
-
-#[test]
-fn the_trajectory_from_minus_x0_is_the_exact_negation() {
-    each_backend!(trajectories_are_symmetric);
-}
-
-// ---------------------------------------------------------------------------
-// Fixed point: saturation, never wrapping
-// ---------------------------------------------------------------------------
-
-/// Raw access to the fixed-point backends, for the exact-arithmetic check.
-trait FixedBits: Scalar {
-    /// Fractional bits of the coefficient format (Q3.29, Q3.61).
-    const COEF_FRAC: u32;
-    const MIN_BITS: i128;
-    const MAX_BITS: i128;
-    fn bits(self) -> i128;
-    fn from_raw(bits: i128) -> Self;
-    fn coef_bits(c: Self::Coef) -> i128;
-}
-
-impl FixedBits for I16F16 {
-    const COEF_FRAC: u32 = 29;
-    const MIN_BITS: i128 = i32::MIN as i128;
-    const MAX_BITS: i128 = i32::MAX as i128;
-    fn bits(self) -> i128 {
-        self.to_bits() as i128
-    }
-    fn from_raw(bits: i128) -> Self {
-        I16F16::from_bits(bits as i32)
-    }
-    fn coef_bits(c: Self::Coef) -> i128 {
-        c.to_bits() as i128
-    }
-}
-
-impl FixedBits for I32F32 {
-    const COEF_FRAC: u32 = 61;
-    const MIN_BITS: i128 = i64::MIN as i128;
-    const MAX_BITS: i128 = i64::MAX as i128;
-    fn bits(self) -> i128 {
-        self.to_bits() as i128
-    }
-    fn from_raw(bits: i128) -> Self {
-        I32F32::from_bits(bits as i64)
-    }
-    fn coef_bits(c: Self::Coef) -> i128 {
-        c.to_bits() as i128
-    }
-}
-
-/// One step from `(x, u)` (raw bits) gave `(x2, u2)`. Checks it against exact integer
-/// arithmetic: `u2` is `(1 − C_d)·u − C_k·x`, computed exactly, rounded once to one of
-/// the two adjacent LSBs (whichever the rounding mode picks) and saturated; `x2` is the
-/// saturated sum `x + u2`. A wrapped result would be off by about 2³².
-fn check_fixed_step<S: FixedBits>(c: &Coefficients<S>, x: i128, u: i128, x2: i128, u2: i128) {
-    let (k, r) = (S::coef_bits(c.stiffness()), S::coef_bits(c.retention()));
-    // |u·r| < 2⁶³·2⁶¹ and |x·k| < 2⁶³·2⁶³: the exact difference fits in i128.
-    let exact = u * r - x * k;
-    let floor = exact >> S::COEF_FRAC;
-    let ceil = floor + i128::from(exact & ((1 << S::COEF_FRAC) - 1) != 0);
-    let clamp = |v: i128| v.clamp(S::MIN_BITS, S::MAX_BITS);
-    assert!(
-        u2 == clamp(floor) || u2 == clamp(ceil),
-        "{}: u' = {u2}, exact {floor}..{ceil} (x = {x}, u = {u})",
-        S::NAME
-    );
-    assert_eq!(
-        x2,
-        clamp(x + u2),
-        "{}: x' = {x2} for x = {x}, u' = {u2}",
-        S::NAME
-    );
-}
-
-/// Steps `v` up to `steps` times, checking every step that does not end at rest.
-fn step_checked<S: FixedBits>(v: &mut SpringValue<S, 1>, c: &Coefficients<S>, steps: usize) {
-    for _ in 0..steps {
-        if v.is_at_rest() {
-            assert!(same_all(v.position(), v.target()));
-            return;
-        }
-        let (x, u) = (v.offset()[0].bits(), v.step_velocity()[0].bits());
-        v.step();
-        if !v.is_at_rest() {
-            check_fixed_step::<S>(c, x, u, v.offset()[0].bits(), v.step_velocity()[0].bits());
-        }
-    }
-}
-
-fn extremes_saturate<S: FixedBits>() {
-    let (min, max) = (S::from_raw(S::MIN_BITS), S::from_raw(S::MAX_BITS));
-    let tunings = [
-        sampled(2.0, 0.3, DT60),
-        Oscillator::android(10_000.0, 0.2)
-            .unwrap()
-            .tuning(DT60)
-            .unwrap(),
-        raw(0.05, 0.2),
-        raw(1.0, 0.0),
-        Tuning::rigid(),
-    ];
-    for tuning in tunings {
-        let c = Coefficients::<S>::new(&tuning);
-        for (from, to) in [
-            (max, min),
-            (min, max),
-            (max, S::ZERO),
-            (min, S::ZERO),
-            (S::ZERO, max),
-        ] {
-            let mut v = SpringValue::<S, 1>::new([from], tuning, DT60).unwrap();
-            if v.set_target([to]).is_err() {
-                // An offset across the whole range is rejected (tested below).
-                assert!((from.to_f64() - to.to_f64()).abs() > S::SAFE_MAGNITUDE / 2.0);
-                continue;
-            }
-            // The first step moves toward the target and stays in range.
-            let before = v.position()[0];
-            v.step();
-            let after = v.position()[0];
-            let toward = if to > before {
-                after > before
-            } else {
-                after < before
+                if motion == Motion::Settled {
+                    break osc.motion_left(x, vel);
+                }
             };
+            let theta = osc.omega * dt;
+            let bound = p * (1.0 + theta / 4.0) * (1.0 + 1e-3) + S::RESOLUTION;
+            let android = android.expect("the offset test passes before the band");
+            android_worst = android_worst.max(android);
+            table.push(format!(
+                "{:7} {rate:5} Hz  {freq} Hz ζ {zeta:<4}  left {:.2} × threshold (Android's rule: {:.2})",
+                S::NAME,
+                left / p,
+                android / p
+            ));
             assert!(
-                toward,
-                "{} {from:?} → {to:?}: {before:?} then {after:?}",
+                left <= bound,
+                "{} {freq} Hz ζ {zeta} at {rate} Hz: {left:e}",
                 S::NAME
             );
-            // Every later step is the exact, saturated arithmetic.
-            step_checked(&mut v, &c, 5000);
         }
     }
+    android_worst / p
 }
 
 #[test]
-fn fixed_point_extremes_saturate_and_move_toward_the_target() {
-    extremes_saturate::<I16F16>();
-    extremes_saturate::<I32F32>();
+fn a_value_settles_only_when_the_motion_left_is_below_the_threshold() {
+    let mut table = Vec::new();
+    let mut android = 0.0f64;
+    for worst in [
+        settles_with_less_than_the_threshold_left::<f32>(&mut table),
+        settles_with_less_than_the_threshold_left::<f64>(&mut table),
+        settles_with_less_than_the_threshold_left::<I16F16>(&mut table),
+        settles_with_less_than_the_threshold_left::<I32F32>(&mut table),
+    ] {
+        android = android.max(worst);
+    }
+    for line in &table {
+        println!("{line}");
+    }
+    // The grid has springs that the offset and velocity test alone would snap early.
+    assert!(android > 5.0, "{android}");
 }
 
-/// An offset `p − t` beyond the range cannot be stored: set_target and set_position
-/// reject it with `OutOfRange(Position)` and leave the value as it was (a saturated
-/// offset would silently teleport it).
-fn retarget_across_the_range_is_rejected<S: FixedBits>() {
-    let (min, max) = (S::from_raw(S::MIN_BITS), S::from_raw(S::MAX_BITS));
-    let half = S::from_raw(S::MAX_BITS / 2 + 1000);
-    for (from, to) in [(max, min), (min, max), (half, half.neg())] {
-        let mut v = SpringValue::<S, 1>::new([from], raw(0.1, 0.5), DT60).unwrap();
+/// What a step reports: `Moving` while the value moves, `Settled` once, in the step that
+/// snaps it onto its target, then `Resting` (and nothing moves) until it is moved again.
+fn motion_is_reported<S: Scalar>() {
+    let rigid = Tuning::rigid(DT60).expect("dt");
+    for tuning in [sampled(2.0, 0.3, DT60), raw(0.05, 0.3, DT60), rigid] {
+        let mut v = value::<S, 2>([1.0, -2.0], &tuning);
+        assert_eq!(v.step(), Motion::Resting, "a new value rests");
+        v.set_target([s(1.0), s(-2.0)]); // where it is: nothing moves
+        v.set_position([s(1.0), s(-2.0)]);
+        assert_eq!(v.step(), Motion::Resting);
+        v.set_target([s(40.0), s(-2.0)]);
+        let mut counts = [0usize; 3];
+        let mut last = v.position();
+        for _ in 0..10_000 {
+            let m = v.step();
+            counts[m as usize] += 1;
+            assert_eq!(m.moved(), v.position() != last || m == Motion::Settled);
+            last = v.position();
+            if m == Motion::Resting {
+                break;
+            }
+        }
+        // Resting once (the step after), Moving until then, Settled exactly once.
         assert_eq!(
-            v.set_target([to]),
-            Err(stiffspring::Error::OutOfRange(
-                stiffspring::Parameter::Position
-            ))
+            (
+                counts[Motion::Resting as usize],
+                counts[Motion::Settled as usize]
+            ),
+            (1, 1)
         );
-        assert!(same(v.position()[0], from), "{}", S::NAME);
-        assert!(same(v.target()[0], from) && v.is_at_rest());
-        let mut w = SpringValue::<S, 1>::new([to], raw(0.1, 0.5), DT60).unwrap();
-        assert!(w.set_position([from]).is_err());
-        assert!(same(w.position()[0], to), "{}", S::NAME);
+        assert_eq!(f(v.position()), [40.0, -2.0], "{}", S::NAME);
+        // A bare step never settles, and a value at rest stays at rest through it.
+        v.advance();
+        assert!(v.is_at_rest());
+        v.fling([s(5.0), S::ZERO]);
+        assert!(!v.is_at_rest());
+        v.advance();
+        assert!(!v.is_at_rest());
+        // (A rigid spring keeps no velocity: `C_d = 1` takes all of a fling.)
+        let expected = if tuning == rigid {
+            Motion::Settled
+        } else {
+            Motion::Moving
+        };
+        assert_eq!(v.step(), expected);
     }
-    // Just inside the range still works and keeps the position exactly.
-    let quarter = S::from_raw(S::MAX_BITS / 4);
-    let mut v = SpringValue::<S, 1>::new([quarter], raw(0.1, 0.5), DT60).unwrap();
-    v.set_target([quarter.neg()]).unwrap();
-    assert!(same(v.position()[0], quarter));
 }
 
 #[test]
-fn fixed_point_retarget_across_more_than_half_the_range_is_rejected() {
-    retarget_across_the_range_is_rejected::<I16F16>();
-    retarget_across_the_range_is_rejected::<I32F32>();
-}
-
-// ---------------------------------------------------------------------------
-// Properties (proptest, host only)
-// ---------------------------------------------------------------------------
-
-#[cfg(not(target_os = "none"))]
-mod properties {
-    use super::*;
-    use proptest::prelude::*;
-
-    /// A coefficient in [0, 1], with the corners drawn often.
-    fn unit() -> impl Strategy<Value = f64> {
-        prop_oneof![1 => Just(0.0), 1 => Just(1.0), 6 => 0.0..=1.0f64]
-    }
-
-    /// Valid tunings: raw coefficients over [0, 1]², and the exact map over
-    /// f·dt ∈ [1e−3, 0.45], ζ ∈ [0, 5], at 60 Hz.
-    fn tunings() -> impl Strategy<Value = Tuning> {
-        prop_oneof![
-            (unit(), unit()).prop_map(|(k, d)| Tuning::from_coefficients(k, d).unwrap()),
-            (
-                1e-3..=0.45f64,
-                prop_oneof![1 => Just(0.0), 1 => Just(1.0), 6 => 0.0..=5.0f64]
-            )
-                .prop_map(|(fdt, z)| Tuning::from_frequency(fdt / DT60, z, DT60).unwrap()),
-        ]
-    }
-
-    /// A fraction in [−1, 1] of a magnitude, with 0 and ±1 drawn often.
-    fn fraction() -> impl Strategy<Value = f64> {
-        prop_oneof![1 => Just(0.0), 1 => Just(1.0), 1 => Just(-1.0), 6 => -1.0..=1.0f64]
-    }
-
-    fn floats_stay_finite<S: Scalar>(
-        tuning: Tuning,
-        (p, t, v): (f64, f64, f64),
-    ) -> Result<(), TestCaseError> {
-        let lim = S::SAFE_MAGNITUDE / 1e6;
-        let mut value = SpringValue::<S, 1>::new([s(p * lim)], tuning, DT60).unwrap();
-        value.set_target([s(t * lim)]).unwrap();
-        match value.fling([s(v * lim)]) {
-            // Documented: u₀ may leave the range for a large velocity.
-            Ok(()) | Err(Error::OutOfRange(Parameter::Velocity)) => {}
-            Err(e) => return Err(TestCaseError::fail(format!("fling: {e:?}"))),
-        }
-        for n in 0..2000 {
-            value.step();
-            let all = [
-                value.position()[0],
-                value.offset()[0],
-                value.step_velocity()[0],
-                value.velocity()[0],
-            ];
-            prop_assert!(
-                all.iter().all(|x| x.to_f64().is_finite()),
-                "{} step {n}: {all:?} ({tuning:?})",
-                S::NAME
-            );
-        }
-        Ok(())
-    }
-
-    fn fixed_never_wraps<S: FixedBits>(
-        tuning: Tuning,
-        (p, t, v): (i128, i128, i128),
-    ) -> Result<(), TestCaseError> {
-        let c = Coefficients::<S>::new(&tuning);
-        let mut value = SpringValue::<S, 1>::new([S::from_raw(p)], tuning, DT60).unwrap();
-        match value.set_target([S::from_raw(t)]) {
-            Ok(()) => {}
-            // An offset beyond the range is rejected, documented; nothing to step.
-            Err(Error::OutOfRange(Parameter::Position)) => return Ok(()),
-            Err(e) => return Err(TestCaseError::fail(format!("set_target: {e:?}"))),
-        }
-        match value.fling([S::from_raw(v)]) {
-            Ok(()) | Err(Error::OutOfRange(Parameter::Velocity)) => {}
-            Err(e) => return Err(TestCaseError::fail(format!("fling: {e:?}"))),
-        }
-        step_checked(&mut value, &c, 2000);
-        Ok(())
-    }
-
-    /// Raw bits of a fixed-point value: anywhere, near the ends, or near zero.
-    fn bits(min: i128, max: i128) -> impl Strategy<Value = i128> {
-        prop_oneof![
-            4 => min..=max,
-            1 => Just(min),
-            1 => Just(max),
-            1 => (0i128..4096).prop_map(move |d| min + d),
-            1 => (0i128..4096).prop_map(move |d| max - d),
-            2 => -1_000_000i128..1_000_000,
-        ]
-    }
-
-    proptest! {
-        #![proptest_config(ProptestConfig::with_cases(256))]
-
-        #[test]
-        fn f32_never_produces_nan_or_inf(t in tunings(), x in (fraction(), fraction(), fraction())) {
-            floats_stay_finite::<f32>(t, x)?;
-        }
-
-        #[test]
-        fn f64_never_produces_nan_or_inf(t in tunings(), x in (fraction(), fraction(), fraction())) {
-            floats_stay_finite::<f64>(t, x)?;
-        }
-
-        #[test]
-        fn i16f16_steps_are_exact_and_saturate(
-            t in tunings(),
-            p in bits(i32::MIN as i128, i32::MAX as i128),
-            g in bits(i32::MIN as i128, i32::MAX as i128),
-            v in bits(i32::MIN as i128, i32::MAX as i128),
-        ) {
-            fixed_never_wraps::<I16F16>(t, (p, g, v))?;
-        }
-
-        #[test]
-        fn i32f32_steps_are_exact_and_saturate(
-            t in tunings(),
-            p in bits(i64::MIN as i128, i64::MAX as i128),
-            g in bits(i64::MIN as i128, i64::MAX as i128),
-            v in bits(i64::MIN as i128, i64::MAX as i128),
-        ) {
-            fixed_never_wraps::<I32F32>(t, (p, g, v))?;
-        }
-    }
+fn a_step_reports_moving_then_settled_once_then_resting() {
+    each_backend!(motion_is_reported);
 }

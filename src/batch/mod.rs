@@ -403,7 +403,8 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     fn position_of(&self, slot: usize) -> [S; D] {
         let mut p = self.target[slot];
         for (p, x) in p.iter_mut().zip(self.offset[slot].iter()) {
-            *p = p.add(S::narrow(*x));
+            // In the state format, which holds any offset (see `SpringValue::position`).
+            *p = S::narrow(S::state_add(p.widen(), *x));
         }
         p
     }

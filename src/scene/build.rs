@@ -9,7 +9,7 @@ use crate::kernel::BodyWeights;
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
-use crate::value::{check_position, gains_of};
+use crate::value::gains_of;
 
 /// A spring's validated set-up data, before it is placed.
 struct NewSpring<S: Scalar, L: LengthKernel<S>> {
@@ -70,7 +70,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         inverse_mass: f64,
     ) -> Result<ParticleId, Error> {
         for p in position {
-            check_position(p, Parameter::Position)?;
+            check_network(p, Parameter::Position)?;
         }
         let slot = self.free_particle_slot()?;
         let generation = self.particles.get(slot).map_or(0, |p| p.generation);
@@ -392,7 +392,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     ) -> Result<(ParticleId, Added), Error> {
         let target = self.slot(particle)?;
         for p in point {
-            check_position(p, Parameter::Position)?;
+            check_network(p, Parameter::Position)?;
         }
         let anchor_slot = self.free_particle_slot()?;
         let slot = self.free_spring_slot()?;
@@ -571,6 +571,28 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
 
 /// `1/mass`, or why not: the mass must be finite and positive and its inverse finite and
 /// non-zero (a mass whose inverse underflows would silently become pinned).
+/// `value` as a component of a scene's position: finite and within
+/// [`Scalar::NETWORK_MAX`], the bound the step keeps positions in (a float particle placed
+/// beyond it would be moved there by its first step).
+pub(crate) fn check_network<S: Scalar>(value: S, parameter: Parameter) -> Result<S, Error> {
+    // NaN compares false, ±∞ is above the bound; fixed point always passes.
+    if value.abs() <= S::from_f64(S::NETWORK_MAX) {
+        return Ok(value);
+    }
+    let v = value.to_f64();
+    Err(if !v.is_finite() {
+        Error::NotFinite { parameter }
+    } else {
+        Error::OutOfRange {
+            parameter,
+            value: v,
+            bound: Bound::MagnitudeAtMost {
+                max: S::NETWORK_MAX,
+            },
+        }
+    })
+}
+
 fn inverse_mass<S: Scalar>(mass: S) -> Result<f64, Error> {
     let m = crate::error::positive(mass.to_f64(), Parameter::Mass)?;
     let inverse = 1.0 / m;

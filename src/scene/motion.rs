@@ -1,8 +1,9 @@
 //! Moving a scene's particles from outside: teleports, dragged anchors, velocities,
 //! impulses, and the exact release of stretched springs.
 
+use super::build::check_network;
 use super::{Kind, ParticleId, Scene};
-use crate::error::{Error, Parameter};
+use crate::error::{Bound, Error, Parameter};
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
 use crate::value::check_position;
@@ -31,7 +32,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     pub fn set_position(&mut self, particle: ParticleId, position: [S; D]) -> Result<(), Error> {
         let slot = self.slot(particle)?;
         for p in position {
-            check_position(p, Parameter::Position)?;
+            check_network(p, Parameter::Position)?;
         }
         let to = position.map(|p| p.widen());
         if self.particles[slot].inverse_mass == 0.0 {
@@ -77,6 +78,17 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         for k in 0..D {
             let v = check_position(velocity[k], Parameter::Velocity)?;
             u[k] = S::scale(v.widen(), dt);
+            // Floats: the step velocity within the bound the step keeps it in (fixed point
+            // saturates by itself and is not bounded there).
+            if S::RESOLUTION == 0.0 && !S::within(u[k], S::state_from_f64(S::NETWORK_MAX)) {
+                return Err(Error::OutOfRange {
+                    parameter: Parameter::Velocity,
+                    value: v.to_f64(),
+                    bound: Bound::MagnitudeAtMost {
+                        max: S::NETWORK_MAX / self.config.dt,
+                    },
+                });
+            }
         }
         self.velocities[slot] = u;
         if self.wake_around(slot) {
@@ -197,7 +209,13 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// `state` if it lies within half the state's range (room for one more step), else
     /// the error.
     fn within_state(&self, state: S::State, parameter: Parameter) -> Result<S::State, Error> {
-        let half = 0.5 * S::STATE_MAX;
-        crate::start::bounded::<S>(state, S::state_from_f64(half), half, parameter)
+        // Floats: the bound the step keeps step velocities in (beyond it the step would
+        // clamp them); fixed point: half the state's range (room for one more step).
+        let max = if S::RESOLUTION == 0.0 {
+            S::NETWORK_MAX
+        } else {
+            0.5 * S::STATE_MAX
+        };
+        crate::start::bounded::<S>(state, S::state_from_f64(max), max, parameter)
     }
 }
