@@ -28,17 +28,17 @@
 //!
 //! - `cargo test --test network_limits` runs the bounded checks (part of `cargo test`).
 //! - `cargo test --test network_limits -- --ignored --nocapture` runs the full sweep
-//!   (ropes of 2 to 64 particles, meshes 3×3 to 10×10, mass ratios, stars; a few
-//!   minutes on two cores) and rewrites the measured table in `STABILITY.md`.
+//!   (ropes of 2 to 64 particles, meshes 3×3 to 10×10, mass ratios, stars; about
+//!   ten minutes on two cores) and rewrites the measured table in `docs/networks.md`.
 
-use lab::linear::{
-    EDGE_RATIOS, Masses, NEUTRAL, Order, Topology, growth_rate, linear_limit, square_limit,
-};
+use lab::linear::{EDGE_RATIOS, Masses, NEUTRAL, Order, Topology, linear_limit, square_limit};
 use lab::reference::network::Network;
 use lab::rng::Rng;
 use stiffspring::Tuning;
 use stiffspring::scene::{LimitPolicy, Scene, SceneConfig, Stepper, network_limit};
 
+/// The library scenes' time step (the map depends on the coefficients only).
+const DT: f64 = 0.01;
 /// Steps of every nonlinear run.
 const STEPS: usize = 10_000;
 /// The two initial deformations.
@@ -274,12 +274,12 @@ type LibraryScene = Scene<f64, 2, 128, 512>;
 /// The library's scene of `top` with every spring added rigid under
 /// [`LimitPolicy::Clamp`]: each ends at its own limit.
 fn library_scene(top: &Topology, order: Order) -> LibraryScene {
-    let config = SceneConfig::new(0.01)
+    let config = SceneConfig::new(DT)
         .unwrap()
         .stepper(stepper(order))
         .limit_policy(LimitPolicy::Clamp)
         .no_sleep();
-    let mut scene = LibraryScene::new(config).unwrap();
+    let mut scene = LibraryScene::new(config);
     let ids: Vec<_> = top
         .positions
         .iter()
@@ -292,10 +292,9 @@ fn library_scene(top: &Topology, order: Order) -> LibraryScene {
             }
         })
         .collect();
+    let rigid = Tuning::rigid(DT).unwrap();
     for &(a, b) in &top.springs {
-        scene
-            .add_spring_at_rest(ids[a], ids[b], Tuning::rigid())
-            .unwrap();
+        scene.add_spring_at_rest(ids[a], ids[b], &rigid).unwrap();
     }
     scene
 }
@@ -322,7 +321,7 @@ fn library_run(top: &Topology, order: Order, fraction: f64, seed: u64) -> Run {
     }
     let mut tracker = Tracker::new(STEPS, library_strains(&scene));
     for t in 0..STEPS {
-        scene.step();
+        let _ = scene.step();
         if !tracker.record(t, library_strains(&scene)) {
             break;
         }
@@ -342,7 +341,7 @@ fn worst_growth_at(top: &Topology, order: Order, limits: &[f64]) -> f64 {
         for (a, b) in [(1.0, r), (r, 1.0)] {
             let ck: Vec<f64> = limits.iter().map(|l| a * l).collect();
             let cd: Vec<f64> = limits.iter().map(|l| b * l).collect();
-            worst = worst.max(growth_rate(&top.step_matrix(&ck, &cd, order)));
+            worst = worst.max(top.growth_rate(&ck, &cd, order));
         }
     }
     worst
@@ -354,7 +353,7 @@ fn mixed_star_growth(n: usize, m: usize, l: f64, order: Order) -> f64 {
     let top = Topology::collinear_star(n);
     let ck = vec![l; n];
     let cd: Vec<f64> = (0..n).map(|k| if k < m { l } else { 0.0 }).collect();
-    growth_rate(&top.step_matrix(&ck, &cd, order))
+    top.growth_rate(&ck, &cd, order)
 }
 
 // ---------------------------------------------------------------------------
@@ -513,7 +512,7 @@ fn jacobi_rule_holds_on_random_networks() {
         let limits = library_limits(&top, Order::Jacobi);
         for _ in 0..4 {
             let (ck, cd) = random_coefficients(&mut rng, &limits);
-            let g = growth_rate(&top.step_matrix(&ck, &cd, Order::Jacobi));
+            let g = top.growth_rate(&ck, &cd, Order::Jacobi);
             assert!(g <= NEUTRAL, "{top:?} {ck:?} {cd:?}: {g}");
         }
     }
@@ -553,7 +552,7 @@ fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
         let top = Topology::random(&mut rng, 1e6);
         let limits = library_limits(&top, Order::GaussSeidel);
         let (ck, cd) = random_coefficients(&mut rng, &limits);
-        let g = growth_rate(&top.step_matrix(&ck, &cd, Order::GaussSeidel));
+        let g = top.growth_rate(&ck, &cd, Order::GaussSeidel);
         if g > NEUTRAL {
             mixed += 1;
             mixed_worst = mixed_worst.max(g);
@@ -571,7 +570,7 @@ fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
         } else {
             (vec![r * l; m], vec![l; m])
         };
-        let g = growth_rate(&top.step_matrix(&ck, &cd, Order::GaussSeidel));
+        let g = top.growth_rate(&ck, &cd, Order::GaussSeidel);
         if g > NEUTRAL {
             uniform += 1;
             uniform_worst = uniform_worst.max(g);
@@ -728,7 +727,7 @@ const END: &str = "<!-- network_limits: end -->";
 
 #[test]
 #[ignore = "the full sweep: minutes; `cargo test --test network_limits -- --ignored --nocapture`"]
-fn full_sweep_writes_the_table_of_stability_md() {
+fn full_sweep_writes_the_table_of_the_networks_doc() {
     let tops = sweep_topologies();
     let rows = measure_all(&tops);
     let table = table(&rows);
@@ -744,7 +743,7 @@ fn full_sweep_writes_the_table_of_stability_md() {
         });
         println!("{}: measured/library from {lo:.2} to {hi:.2}", name(order));
     }
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("STABILITY.md");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/networks.md");
     if let Ok(text) = std::fs::read_to_string(&path)
         && let (Some(b), Some(e)) = (text.find(BEGIN), text.find(END))
     {
