@@ -113,21 +113,7 @@ impl<S: Scalar> Start<S> {
 
     /// `state` if it lies within the limit, else the error naming `parameter`.
     pub(crate) fn check(&self, state: S::State, parameter: Parameter) -> Result<S::State, Error> {
-        if S::within(state, self.limit) {
-            Ok(state)
-        } else {
-            Err(Error::Unrepresentable {
-                parameter,
-                backend: S::NAME,
-                value: S::state_to_f64(state),
-                limit: self.limit_f64,
-                remedy: if S::RESOLUTION > 0.0 {
-                    Remedy::LargerUnit
-                } else {
-                    Remedy::WiderBackend
-                },
-            })
-        }
+        bounded::<S>(state, self.limit, self.limit_f64, parameter)
     }
 
     /// `state` limited to the bound (saturating), for the infallible setters.
@@ -139,5 +125,31 @@ impl<S: Scalar> Start<S> {
         } else {
             S::state_sub(S::STATE_ZERO, self.limit)
         }
+    }
+}
+
+/// `state` if `|state| ≤ limit` (`limit_f64` in `f64`), else the error that names
+/// `parameter`, the value and the limit, and says what would hold it: a larger unit in
+/// fixed point, a wider backend in floats.
+pub(crate) fn bounded<S: Scalar>(
+    state: S::State,
+    limit: S::State,
+    limit_f64: f64,
+    parameter: Parameter,
+) -> Result<S::State, Error> {
+    if S::within(state, limit) {
+        Ok(state)
+    } else {
+        Err(Error::Unrepresentable {
+            parameter,
+            backend: S::NAME,
+            value: S::state_to_f64(state),
+            limit: limit_f64,
+            remedy: if S::RESOLUTION > 0.0 {
+                Remedy::LargerUnit
+            } else {
+                Remedy::WiderBackend
+            },
+        })
     }
 }

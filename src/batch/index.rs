@@ -1,6 +1,6 @@
 //! How a batch names its values and reports a step.
 
-/// A value of a [`SpringBatch`]: a slot and the generation of the value in it, so that an
+/// A value of a [`SpringBatch`](super::SpringBatch): a slot and the generation of the value in it, so that an
 /// index of a removed value never names the value that took its slot.
 ///
 /// ```
@@ -37,7 +37,7 @@ impl BatchIndex {
     }
 }
 
-/// What one [`SpringBatch::step`] did.
+/// What one [`SpringBatch::step`](super::SpringBatch::step) did.
 ///
 /// ```
 /// use stiffspring::{BatchMotion, SpringBatch, Tuning};
@@ -56,7 +56,7 @@ impl BatchIndex {
 pub struct BatchMotion {
     /// Values that moved and are still moving.
     pub moving: usize,
-    /// Values that came to rest in this step ([`SpringBatch::just_settled`] names them).
+    /// Values that came to rest in this step ([`SpringBatch::just_settled`](super::SpringBatch::just_settled) names them).
     pub settled: usize,
 }
 

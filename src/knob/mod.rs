@@ -259,7 +259,7 @@ impl<S: Scalar> Knob<S> {
     ///
     /// # Errors
     ///
-    /// The first bad argument, as a [`KnobError`]: the crate-wide [`Error`] (which
+    /// The first bad argument, as a [`KnobError`]: the crate-wide [`Error`](crate::Error) (which
     /// parameter), the [`Limit`] it broke, its value and the bound's limit.
     ///
     /// | argument | error, bound |

@@ -128,15 +128,15 @@ impl<S: Wrap> LengthKernel<S> for WrappedAngle {
     const SIGNED_REST: bool = true;
 
     fn rest(angle: S) -> Self::Rest {
-        angle.widen()
+        <Angle as LengthKernel<S>>::rest(angle)
     }
 
     fn rest_length(rest: &Self::Rest) -> S {
-        S::narrow(*rest)
+        <Angle as LengthKernel<S>>::rest_length(rest)
     }
 
     fn flipped(rest: &Self::Rest) -> Self::Rest {
-        S::state_sub(S::STATE_ZERO, *rest)
+        <Angle as LengthKernel<S>>::flipped(rest)
     }
 
     #[inline(always)]

@@ -213,11 +213,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             self.checked(new.coefficients, self.share_count(sa, sb, &change), factors)?;
         let clamps = self.check_neighbours(&[sa, sb], &change)?;
         let gains = if clamped_self {
-            gains_of::<S>(&Tuning::from_coefficients_extended(
-                coefficients.0,
-                coefficients.1,
-                self.config.dt,
-            )?)?
+            self.gains_at(coefficients)?
         } else {
             new.gains
         };
@@ -421,11 +417,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         let (coefficients, clamped_self) = self.checked(new.coefficients, degree, factors)?;
         let clamps = self.check_neighbours(&[target], &change)?;
         let gains = if clamped_self {
-            gains_of::<S>(&Tuning::from_coefficients_extended(
-                coefficients.0,
-                coefficients.1,
-                self.config.dt,
-            )?)?
+            self.gains_at(coefficients)?
         } else {
             new.gains
         };
@@ -501,11 +493,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         let factors = self.stiffening(a, b, &s.rest);
         let (coefficients, clamped) = self.checked(new.coefficients, degree, factors)?;
         let gains = if clamped {
-            gains_of::<S>(&Tuning::from_coefficients_extended(
-                coefficients.0,
-                coefficients.1,
-                self.config.dt,
-            )?)?
+            self.gains_at(coefficients)?
         } else {
             new.gains
         };

@@ -169,6 +169,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             .max(self.share_count_of(b, change))
     }
 
+    /// The gains of raw coefficients `(C_k, C_d)` at the scene's `dt`: a spring clamped to
+    /// the network limit.
+    pub(crate) fn gains_at(&self, (ck, cd): (f64, f64)) -> Result<S::Gains, Error> {
+        gains_of::<S>(&Tuning::from_coefficients_extended(ck, cd, self.config.dt)?)
+    }
+
     /// The length kernel's stiffening factors ([`LengthKernel::stiffening`]) for a
     /// spring with rest data `rest` between slots `a` and `b` at their current distance;
     /// `(1, 1)` for angles and point springs.
@@ -232,9 +238,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             let factors = self.stiffening(a, b, &s.rest);
             let ((ck, cd), clamped) = self.checked(S::gains_to_f64(&s.gains), degree, factors)?;
             if clamped {
-                let tuning = Tuning::from_coefficients_extended(ck, cd, self.config.dt)?;
                 // At most K springs: always room.
-                let _ = clamps.push((i as u16, gains_of::<S>(&tuning)?));
+                let _ = clamps.push((i as u16, self.gains_at((ck, cd))?));
             }
         }
         Ok(clamps)

@@ -7,13 +7,13 @@
 //!
 //! - each particle's inverse mass (0 for a pinned particle);
 //! - each spring's gains, its two-body weights `w_a`, `w_b` (eq. 17–20 through
-//!   [`BodyWeights`](crate::kernel::BodyWeights)), and what its length kernel needs;
+//!   [`BodyWeights`]), and what its length kernel needs;
 //! - which springs have a pinned end (they skip the weights and the pinned side), and
 //!   which connect two pinned particles (they are kept but never stepped);
 //! - which groups of connected particles ("islands") are awake.
 //!
 //! Positions, velocities, masses, rest lengths, gravity and impulses are all in the
-//! scene's number type `S`; only the [`Tuning`](crate::Tuning)s and the configuration's
+//! scene's number type `S`; only the [`Tuning`]s and the configuration's
 //! time step and thresholds are `f64`. Particles and springs are named by generational
 //! ids ([`ParticleId`], [`SpringId`]): a stale id is an error, never another particle.
 //!

@@ -2,7 +2,7 @@
 //! impulses, and the exact release of stretched springs.
 
 use super::{Kind, ParticleId, Scene};
-use crate::error::{Error, Parameter, Remedy};
+use crate::error::{Error, Parameter};
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
 use crate::value::check_position;
@@ -197,17 +197,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// `state` if it lies within half the state's range (room for one more step), else
     /// the error.
     fn within_state(&self, state: S::State, parameter: Parameter) -> Result<S::State, Error> {
-        let limit = S::state_from_f64(0.5 * S::STATE_MAX);
-        if S::within(state, limit) {
-            Ok(state)
-        } else {
-            Err(Error::Unrepresentable {
-                parameter,
-                backend: S::NAME,
-                value: S::state_to_f64(state),
-                limit: 0.5 * S::STATE_MAX,
-                remedy: Remedy::LargerUnit,
-            })
-        }
+        let half = 0.5 * S::STATE_MAX;
+        crate::start::bounded::<S>(state, S::state_from_f64(half), half, parameter)
     }
 }
