@@ -358,7 +358,7 @@ fn random_coefficients(rng: &mut Rng, limits: &[f64]) -> (Vec<f64>, Vec<f64>) {
 fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
     let mut rng = Rng::seeded(7);
     let (mut mixed, mut mixed_worst, mut uniform, mut uniform_worst) = (0, 0.0f64, 0, 0.0f64);
-    let trials = 300;
+    let trials = 3000;
     for _ in 0..trials {
         let top = Topology::random(&mut rng, 1e6);
         let limits = library_limits(&top, Order::GaussSeidel);
@@ -392,9 +392,15 @@ fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
          mixed coefficients, masses to 1e6: {mixed} flutter (worst growth {mixed_worst:.1e}/step); \
          one tuning, masses to 100: {uniform} flutter (worst {uniform_worst:.1e}/step)"
     );
+    // Measured: 7 of 3000 flutter with mixed coefficients (worst 1.1e−2 per step), none
+    // with one tuning. It exists (no share-count rule removes it), and it is rare and slow.
     assert_eq!(uniform, 0);
+    assert!(
+        mixed > 0,
+        "no flutter found: the claim needs another sample"
+    );
     assert!(mixed_worst < 0.02, "{mixed_worst}");
-    assert!(mixed * 20 < trials, "{mixed} of {trials}");
+    assert!(mixed * 100 < trials, "{mixed} of {trials}");
 }
 
 // ---------------------------------------------------------------------------
