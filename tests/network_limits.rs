@@ -29,7 +29,7 @@
 //! - `cargo test --test network_limits` runs the bounded checks (part of `cargo test`).
 //! - `cargo test --test network_limits -- --ignored --nocapture` runs the full sweep
 //!   (ropes of 2 to 64 particles, meshes 3×3 to 10×10, mass ratios, stars; about
-//!   ten minutes on two cores) and rewrites the measured table in `docs/networks.md`.
+//!   10 to 20 minutes on two cores) and rewrites the measured table in `docs/networks.md`.
 
 use lab::linear::{EDGE_RATIOS, Masses, NEUTRAL, Order, Topology, linear_limit, square_limit};
 use lab::nonlinear::{Run, SEEDS, STEPS, Tracker, nonlinear_limit};

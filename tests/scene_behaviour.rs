@@ -151,15 +151,28 @@ fn sleeping_saves_work<S: Scalar>() -> String {
     let (mut sleeping, mut always) = (Ropes::<S>::new(true), Ropes::<S>::new(false));
     let (mut with, mut without) = (0, 0);
     let mut fell_asleep_at = None;
+    let mut reported = Vec::new();
     for step in 0..3600 {
         with += work(sleeping.scene.active());
         without += work(always.scene.active());
-        let _ = sleeping.scene.step();
+        // The step reports what it moved and what fell asleep, and names them.
+        let motion = sleeping.scene.step();
+        assert_eq!(motion.moving, sleeping.scene.active().0, "{}", S::NAME);
+        assert_eq!(
+            motion.fell_asleep,
+            sleeping.scene.just_fell_asleep().count()
+        );
+        reported.extend(sleeping.scene.just_fell_asleep());
         let _ = always.scene.step();
         if fell_asleep_at.is_none() && sleeping.awake() == vec![0] {
             fell_asleep_at = Some(step + 1);
         }
     }
+    // Each resting rope fell asleep once, every particle of it, and never woke.
+    reported.sort();
+    let mut resting: Vec<ParticleId> = sleeping.links[1..].iter().flatten().copied().collect();
+    resting.sort();
+    assert_eq!(reported, resting, "{}", S::NAME);
     let before = work(always.scene.active());
     let after = work(sleeping.scene.active());
     // The swinging rope is stepped exactly as without sleeping (it never slept).
