@@ -498,6 +498,27 @@ fn a_jelly_far_from_the_origin_matches_the_reference_as_well_as_near_it() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
+/// What the comparisons read: [`Scene::precise_position`] is the state the scene holds.
+/// An `I16F16` particle moving 2⁻²⁰ units a step (a sixteenth of a position's last bit)
+/// for seven steps has moved exactly 7·2⁻²⁰ in its Q24.40 state, which a position reads
+/// as 0.
+#[test]
+fn precise_position_reads_the_state_below_a_positions_last_bit() {
+    let dt = 1.0 / 64.0;
+    let config = SceneConfig::<I16F16, 1>::new(dt).unwrap().no_sleep();
+    let mut scene = Scene::<I16F16, 1, 1, 1>::new(config);
+    let p = scene.add_particle([I16F16::ZERO], I16F16::ONE).unwrap();
+    // 2⁻¹⁴ units per second is 2⁻²⁰ units per step at dt = 1/64.
+    scene
+        .set_velocity(p, [I16F16::from_f64(2f64.powi(-14))])
+        .unwrap();
+    for _ in 0..7 {
+        let _ = scene.step();
+    }
+    assert_eq!(scene.precise_position(p).unwrap(), [7.0 * 2f64.powi(-20)]);
+    assert_eq!(scene.position(p).unwrap(), [I16F16::ZERO]);
+}
+
 // ---------------------------------------------------------------------------
 // The spinning pair: the article's "comes to rest further out", quantified
 // ---------------------------------------------------------------------------
