@@ -1,8 +1,9 @@
-//! Instruction counts per step of every hot kernel, in every backend, on an emulated
-//! Cortex-M4F and Cortex-M0.
+//! Firmware instrument: instructions per step of every hot kernel, in every backend, on
+//! an emulated Cortex-M4F and Cortex-M0, beside hand-written floor loops.
 //!
 //! ```text
 //! scripts/cost                       # both machines: target/cost/m4f.csv, target/cost/m0.csv
+//! scripts/cost --twice               # and a second run, which must agree exactly
 //! cargo run --release --target thumbv7em-none-eabihf --example cost   # CSV on stdout
 //! ```
 //!
@@ -15,37 +16,55 @@
 //! These are instructions, not cycles.
 //!
 //! Each kernel is stepped in an `#[inline(never)]` loop between two timer reads, `N₁`
-//! and then `N₂` times; `(I(N₂) − I(N₁))/(N₂ − N₁)` removes the call and the timer
-//! reads, and the same figure for an empty loop (the loop's own counter and branch) is
-//! subtracted. What is left is divided by the springs a step moves. The CSV has the
-//! columns `kernel,backend,instructions_per_step`, with three decimals (the average of
+//! and then `N₂` times, with `black_box(&mut bench)` after every step so that the state
+//! lives in memory between steps, as a firmware's does between two control periods;
+//! `(I(N₂) − I(N₁))/(N₂ − N₁)` removes the call and the timer reads, and the same figure
+//! for an empty loop (the loop's own counter and branch) is subtracted. What is left is
+//! divided by the values or springs a step moves. The CSV has the columns
+//! `kernel,backend,instructions_per_step`, with three decimals (the average of
 //! data-dependent paths over the `N₂ − N₁` steps). On the host the same kernels run
-//! with a wall clock instead, as a smoke test.
+//! with a wall clock instead (nanoseconds, noisy), as a smoke test.
 //!
-//! **Adding a kernel** is one line in [`kernels!`] below: a name, a backend, and an
-//! expression that builds an `Option<impl Bench>` (a state with a `step`).
+//! The values are a lightly damped 2 Hz spring at 1 kHz (`ζ` = 0.02, `C_k` ≈ 1.6e−4,
+//! `C_d` ≈ 2.5e−4) with a rest threshold of 1e−30, so that nothing settles while it is
+//! measured: `step` pays for the rest test on every step and never for the snap. The
+//! floors (`floor_*`) are what the same recurrence costs written by hand over plain
+//! arrays, with the coefficients in registers: the reference the library's loops are
+//! compared with (docs/firmware.md).
+//!
+//! **Adding a kernel** is one line in [`kernels!`] below: a name, a backend, and a
+//! function that builds an `Option<impl Bench>` (a state with a `step`).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 firmware::output!(text);
 
-use stiffspring::kernel::Coefficients;
 use stiffspring::length::{Exact, LengthKernel, Linearised};
-use stiffspring::scene::{AngularScene, Scene, SceneConfig, WrappedAngle};
+use stiffspring::scene::{Angle, AngularScene, Scene, SceneConfig};
 use stiffspring::{
     I16F16, I32F32, Knob, KnobConfig, RestThreshold, Scalar, SpringBatch, SpringValue, Tuning,
 };
 
 /// Steps in the two measured runs; their difference is what is counted. The longest
-/// run (f64 in soft float on the M0, a scene of 8 springs) stays far below the timer's
+/// run (a scene of 8 springs in soft-float `f64` on the M0) stays far below the timer's
 /// wrap at 167 M instructions.
 const N1: u32 = 32;
 const N2: u32 = 32 + 256;
+
+/// Values in the measured batches: the per-step bookkeeping of a batch is spread over
+/// this many values. 16 on the Cortex-M0, whose 16 KiB of RAM (the microbit map) holds
+/// the stack: a batch of 64 `I32F32` values is 3.4 KB, and the moves while it is built
+/// overflowed it.
+const BATCH: usize = if cfg!(target_abi = "eabihf") || cfg!(not(target_os = "none")) {
+    64
+} else {
+    16
+};
 
 /// Something whose step is counted.
 trait Bench {
     /// One step. Inlined into the harness loop.
     fn step(&mut self);
-    /// The springs (or values) one step moves; the count is reported per spring.
+    /// The values or springs one step moves; the count is reported per one of them.
     fn per_step(&self) -> u32 {
         1
     }
@@ -59,74 +78,199 @@ impl Bench for Empty {
 }
 
 // ---------------------------------------------------------------------------------------
-// The kernels
+// Values and batches
 // ---------------------------------------------------------------------------------------
 
-/// An undamped spring that never comes to rest: every step takes the moving path.
-fn never_resting() -> Option<Tuning> {
-    Tuning::from_coefficients(0.01, 0.0).ok()
+/// A lightly damped 2 Hz spring at 1 kHz (ζ = 0.02): `C_k` ≈ 1.6e−4, `C_d` ≈ 2.5e−4.
+fn tuning() -> Option<Tuning> {
+    Tuning::from_frequency(2.0, 0.02, 1e-3).ok()
 }
 
-/// `SpringValue::<S, 1>::step` of a moving value: the kernel, the rest check.
-struct Value<S: Scalar>(SpringValue<S, 1>);
-impl<S: Scalar> Bench for Value<S> {
-    #[inline(always)]
-    fn step(&mut self) {
-        self.0.step();
-    }
+/// A threshold no measured value reaches: `step` always takes the moving path.
+fn never() -> Option<RestThreshold> {
+    RestThreshold::new(1e-30, 1e-30).ok()
 }
-fn value<S: Scalar>() -> Option<Value<S>> {
-    let never = RestThreshold::new(1e-30, 1e-30).ok()?;
-    let mut v = SpringValue::new([S::ZERO], never_resting()?, 1e-3)
+
+fn moving_value<S: Scalar>() -> Option<SpringValue<S, 1>> {
+    let mut v = SpringValue::new([S::ZERO], &tuning()?)
         .ok()?
-        .with_rest_threshold(never);
-    v.set_target([S::from_f64(100.0)]).ok()?;
-    Some(Value(v))
+        .with_rest_threshold(never()?);
+    v.try_set_target([S::from_f64(100.0)]).ok()?;
+    Some(v)
 }
 
-/// The bare two multiply-adds: `u ← respond(x, u)`, `x ← x + u`.
-struct Kernel1<S: Scalar> {
-    c: Coefficients<S>,
-    x: S,
-    u: S,
-}
-impl<S: Scalar> Bench for Kernel1<S> {
+/// `SpringValue::<S, 1>::advance`: the spring alone, no rest test.
+struct ValueAdvance<S: Scalar>(SpringValue<S, 1>);
+impl<S: Scalar> Bench for ValueAdvance<S> {
     #[inline(always)]
     fn step(&mut self) {
-        self.u = self.c.respond(self.x, self.u);
-        self.x = self.x.add(self.u);
+        self.0.advance();
     }
 }
-fn kernel_1d<S: Scalar>() -> Option<Kernel1<S>> {
-    Some(Kernel1 {
-        c: Coefficients::new(&never_resting()?),
-        x: S::from_f64(100.0),
-        u: S::ZERO,
+fn value_advance<S: Scalar>() -> Option<ValueAdvance<S>> {
+    Some(ValueAdvance(moving_value()?))
+}
+
+/// `SpringValue::<S, 1>::step` of a moving value: the spring, the rest test, the event.
+struct ValueStep<S: Scalar>(SpringValue<S, 1>);
+impl<S: Scalar> Bench for ValueStep<S> {
+    #[inline(always)]
+    fn step(&mut self) {
+        let _ = self.0.step();
+    }
+}
+fn value_step<S: Scalar>() -> Option<ValueStep<S>> {
+    Some(ValueStep(moving_value()?))
+}
+
+fn moving_batch<S: Scalar>() -> Option<SpringBatch<S, 1, BATCH>> {
+    let mut b = SpringBatch::new(&tuning()?)
+        .ok()?
+        .with_rest_threshold(never()?);
+    for i in 0..BATCH {
+        let k = b.push([S::ZERO]).ok()?;
+        b.try_set_target(k, [S::from_f64(10.0 + i as f64)]).ok()?;
+    }
+    Some(b)
+}
+
+/// `SpringBatch::<S, 1, BATCH>::step`, all awake, per value.
+struct BatchStep<S: Scalar>(SpringBatch<S, 1, BATCH>);
+impl<S: Scalar> Bench for BatchStep<S> {
+    #[inline(always)]
+    fn step(&mut self) {
+        let _ = self.0.step();
+    }
+    fn per_step(&self) -> u32 {
+        BATCH as u32
+    }
+}
+fn batch_step<S: Scalar>() -> Option<BatchStep<S>> {
+    Some(BatchStep(moving_batch()?))
+}
+/// [`batch_step`] testing rest every second step.
+fn batch_step_every2<S: Scalar>() -> Option<BatchStep<S>> {
+    Some(BatchStep(moving_batch()?.with_rest_check_every(2)))
+}
+/// [`batch_step`] testing rest every fourth step.
+fn batch_step_every4<S: Scalar>() -> Option<BatchStep<S>> {
+    Some(BatchStep(moving_batch()?.with_rest_check_every(4)))
+}
+
+/// `SpringBatch::<S, 1, BATCH>::advance`, per value.
+struct BatchAdvance<S: Scalar>(SpringBatch<S, 1, BATCH>);
+impl<S: Scalar> Bench for BatchAdvance<S> {
+    #[inline(always)]
+    fn step(&mut self) {
+        self.0.advance();
+    }
+    fn per_step(&self) -> u32 {
+        BATCH as u32
+    }
+}
+fn batch_advance<S: Scalar>() -> Option<BatchAdvance<S>> {
+    Some(BatchAdvance(moving_batch()?))
+}
+
+/// The floor of a batch in backend `S`: the library's own step (`Scalar::advance`) over
+/// plain arrays, the gains copied into a local (registers) once per sweep.
+struct Floor<S: Scalar> {
+    gains: S::Gains,
+    x: [S::State; BATCH],
+    v: [S::State; BATCH],
+}
+impl<S: Scalar> Bench for Floor<S> {
+    #[inline(always)]
+    fn step(&mut self) {
+        let g = self.gains;
+        for (x, v) in self.x.iter_mut().zip(self.v.iter_mut()) {
+            S::advance(&g, x, v);
+        }
+    }
+    fn per_step(&self) -> u32 {
+        BATCH as u32
+    }
+}
+fn floor<S: Scalar>() -> Option<Floor<S>> {
+    let t = tuning()?;
+    let gains = S::gains(t.stiffness(), t.damping())?;
+    let mut x = [S::STATE_ZERO; BATCH];
+    for (i, x) in x.iter_mut().enumerate() {
+        *x = S::from_f64(-10.0 - i as f64).widen();
+    }
+    Some(Floor {
+        gains,
+        x,
+        v: [S::STATE_ZERO; BATCH],
     })
 }
 
-/// `SpringBatch::<S, 16>::step` with all 16 values moving, per value.
-struct Batch<S: Scalar>(SpringBatch<S, 16>);
-impl<S: Scalar> Bench for Batch<S> {
+/// The `f32` batch floor written out by hand, independent of the library:
+/// `u = ũ − k·x; x += u; ũ = u − d·u` over plain arrays.
+struct FloorHand {
+    k: f32,
+    d: f32,
+    x: [f32; BATCH],
+    v: [f32; BATCH],
+}
+impl Bench for FloorHand {
     #[inline(always)]
     fn step(&mut self) {
-        self.0.step();
+        let (k, d) = (self.k, self.d);
+        for (x, v) in self.x.iter_mut().zip(self.v.iter_mut()) {
+            let u = *v - k * *x;
+            *x += u;
+            *v = u - d * u;
+        }
     }
     fn per_step(&self) -> u32 {
-        16
+        BATCH as u32
     }
 }
-fn batch_16<S: Scalar>() -> Option<Batch<S>> {
-    let never = RestThreshold::new(1e-30, 1e-30).ok()?;
-    let mut b = SpringBatch::new(1e-3).ok()?;
-    for i in 0..16 {
-        let k = b
-            .push_with_threshold([S::ZERO], never_resting()?, never)
-            .ok()?;
-        b.set_target(k, [S::from_f64(10.0 + i as f64)]).ok()?;
+fn floor_hand() -> Option<FloorHand> {
+    let t = tuning()?;
+    let mut x = [0.0; BATCH];
+    for (i, x) in x.iter_mut().enumerate() {
+        *x = -10.0 - i as f32;
     }
-    Some(Batch(b))
+    Some(FloorHand {
+        k: t.stiffness() as f32,
+        d: t.damping() as f32,
+        x,
+        v: [0.0; BATCH],
+    })
 }
+
+/// One `f32` value stepped by hand, its state and coefficients in memory as a
+/// `SpringValue`'s are (the harness keeps nothing in registers between steps): the
+/// single-value floor.
+struct FloorValue {
+    x: f32,
+    v: f32,
+    k: f32,
+    d: f32,
+}
+impl Bench for FloorValue {
+    #[inline(always)]
+    fn step(&mut self) {
+        let u = self.v - self.k * self.x;
+        self.x += u;
+        self.v = u - self.d * u;
+    }
+}
+fn floor_value() -> Option<FloorValue> {
+    let t = tuning()?;
+    Some(FloorValue {
+        x: -100.0,
+        v: 0.0,
+        k: t.stiffness() as f32,
+        d: t.damping() as f32,
+    })
+}
+
+// ---------------------------------------------------------------------------------------
+// Scenes
+// ---------------------------------------------------------------------------------------
 
 /// A scene step, per spring.
 struct SceneStep<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<S>>(
@@ -137,54 +281,205 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
 {
     #[inline(always)]
     fn step(&mut self) {
-        self.0.step();
+        let _ = self.0.step();
     }
     fn per_step(&self) -> u32 {
         K as u32
     }
 }
 
+/// Springs of the measured chains (9 particles).
+const CHAIN: usize = 8;
+/// The chains' time step.
+const CHAIN_DT: f64 = 1e-3;
+
 /// Lightly damped, inside the network limit of two springs per particle.
 fn chain_tuning() -> Option<Tuning> {
-    Tuning::from_coefficients(0.2, 0.01).ok()
+    Tuning::from_coefficients(0.2, 0.01, CHAIN_DT).ok()
 }
 
-/// The 2D distance spring with length kernel `L`: a free chain of 9 particles and 8
+/// The 2D distance spring with length kernel `L`: a free rope of 9 particles and 8
 /// springs, zig-zagged so that every spring is stretched, without gravity or sleep. Per
 /// spring, the particles' integration included.
-fn distance_2d<S: Scalar, L: LengthKernel<S>>() -> Option<SceneStep<S, 2, 9, 8, L>> {
-    let config = SceneConfig::new(1e-3).ok()?.no_sleep();
-    let mut scene = Scene::<S, 2, 9, 8, L>::new(config).ok()?;
+fn distance_2d<S: Scalar, L: LengthKernel<S>>() -> Option<SceneStep<S, 2, 9, CHAIN, L>> {
+    let config = SceneConfig::new(CHAIN_DT).ok()?.no_sleep();
+    let mut scene = Scene::<S, 2, 9, CHAIN, L>::new(config);
     let mut previous = None;
-    for i in 0..9 {
+    for i in 0..=CHAIN {
         let y = if i % 2 == 0 { 0.0 } else { 0.3 };
         let p = scene
-            .add_particle([S::from_f64(i as f64), S::from_f64(y)], 1.0)
+            .add_particle([S::from_f64(i as f64), S::from_f64(y)], S::ONE)
             .ok()?;
         if let Some(q) = previous {
-            scene.add_spring(q, p, 1.0, chain_tuning()?).ok()?;
+            scene.add_spring(q, p, S::ONE, &chain_tuning()?).ok()?;
         }
         previous = Some(p);
     }
     Some(SceneStep(scene))
 }
 
-/// The angular spring with angle kernel `L`: a free chain of 9 bodies and 8 springs, wound
-/// alternately. Per spring, the bodies' integration included.
-fn angular<S: Scalar, L: LengthKernel<S>>() -> Option<SceneStep<S, 1, 9, 8, L>> {
-    let config = SceneConfig::new(1e-3).ok()?.no_sleep();
-    let mut scene = AngularScene::<S, 9, 8, L>::new(config).ok()?;
+/// The same rope pulled by a drag handle: the 2D point spring (zero rest length) of a
+/// pinned handle on every particle. Per spring.
+// Measured on the M4F and the host only (see `measure_scenes`).
+#[cfg_attr(all(target_os = "none", not(target_abi = "eabihf")), allow(dead_code))]
+fn point_2d<S: Scalar>() -> Option<SceneStep<S, 2, 16, CHAIN, Exact>> {
+    let config = SceneConfig::new(CHAIN_DT).ok()?.no_sleep();
+    let mut scene = Scene::<S, 2, 16, CHAIN, Exact>::new(config);
+    let t = chain_tuning()?;
+    for i in 0..CHAIN {
+        let p = scene
+            .add_particle([S::from_f64(i as f64), S::ZERO], S::ONE)
+            .ok()?;
+        scene
+            .add_anchor([S::from_f64(i as f64), S::from_f64(0.3)], p, S::ZERO, &t)
+            .ok()?;
+    }
+    Some(SceneStep(scene))
+}
+
+/// The angular spring: a free chain of 9 bodies and 8 springs, wound alternately. Per
+/// spring, the bodies' integration included.
+// Measured on the M4F and the host only (see `measure_scenes`).
+#[cfg_attr(all(target_os = "none", not(target_abi = "eabihf")), allow(dead_code))]
+fn angular<S: Scalar>() -> Option<SceneStep<S, 1, 9, CHAIN, Angle>> {
+    let config = SceneConfig::new(CHAIN_DT).ok()?.no_sleep();
+    let mut scene = AngularScene::<S, 9, CHAIN, Angle>::new(config);
     let mut previous = None;
-    for i in 0..9 {
+    for i in 0..=CHAIN {
         let angle = if i % 2 == 0 { 0.0 } else { 0.5 };
-        let p = scene.add_particle([S::from_f64(angle)], 1e-3).ok()?;
+        let p = scene
+            .add_particle([S::from_f64(angle)], S::from_f64(1e-3))
+            .ok()?;
         if let Some(q) = previous {
-            scene.add_spring(q, p, 0.0, chain_tuning()?).ok()?;
+            scene.add_spring(q, p, S::ZERO, &chain_tuning()?).ok()?;
         }
         previous = Some(p);
     }
     Some(SceneStep(scene))
 }
+
+/// The floor of the 2D distance spring with the hardware root: the same rope as
+/// [`distance_2d`] written by hand over plain arrays, with what the library's step must
+/// keep (each spring's rest length and body weights read from memory, the zero-length
+/// guard, the integration of every particle) and nothing else: no index lists, no
+/// bounds checks. Per spring.
+///
+/// Two of the library's safety and accuracy features can be switched on, to measure what
+/// each costs without the rest of the bookkeeping: `GUARD`, the network bound tested on
+/// `|x + u| + |u|` of every particle (as the library's fast path does, with `abs` as
+/// `vabs`), and `CARRY`, positions that carry their rounding remainder (the separation
+/// reads it, the integration keeps it by a two-sum).
+#[cfg(target_abi = "eabihf")]
+struct FloorRope<const GUARD: bool, const CARRY: bool> {
+    k: f32,
+    d: f32,
+    rest: [f32; CHAIN],
+    weights: [(f32, f32); CHAIN],
+    x: [[f32; 2]; CHAIN + 1],
+    r: [[f32; 2]; CHAIN + 1],
+    u: [[f32; 2]; CHAIN + 1],
+}
+#[cfg(target_abi = "eabihf")]
+impl<const GUARD: bool, const CARRY: bool> Bench for FloorRope<GUARD, CARRY> {
+    #[inline(always)]
+    fn step(&mut self) {
+        let (k, d) = (self.k, self.d);
+        for i in 0..CHAIN {
+            let (a, b) = (self.x[i], self.x[i + 1]);
+            let (mut dx, mut dy) = (b[0] - a[0], b[1] - a[1]);
+            if CARRY {
+                let (ra, rb) = (self.r[i], self.r[i + 1]);
+                dx += rb[0] - ra[0];
+                dy += rb[1] - ra[1];
+            }
+            let length = vsqrt(dx * dx + dy * dy);
+            let inverse = if length > 0.0 { 1.0 / length } else { 0.0 };
+            let (nx, ny) = (dx * inverse, dy * inverse);
+            let (ua, ub) = (self.u[i], self.u[i + 1]);
+            let relative = (ub[0] - ua[0]) * nx + (ub[1] - ua[1]) * ny;
+            let delta = -(k * (length - self.rest[i]) + d * relative);
+            let (wa, wb) = self.weights[i];
+            let (da, db) = (-(delta * wa), delta * wb);
+            self.u[i] = [ua[0] + da * nx, ua[1] + da * ny];
+            self.u[i + 1] = [ub[0] + db * nx, ub[1] + db * ny];
+        }
+        for ((x, r), u) in self.x.iter_mut().zip(self.r.iter_mut()).zip(&self.u) {
+            let (mut next, mut rest) = (*x, *r);
+            for c in 0..2 {
+                if CARRY {
+                    // Two-sum of x + (u + r): the sum and its exact rounding error.
+                    let y = u[c] + r[c];
+                    let s = x[c] + y;
+                    let t = s - x[c];
+                    (next[c], rest[c]) = (s, (x[c] - (s - t)) + (y - t));
+                } else {
+                    next[c] = x[c] + u[c];
+                }
+            }
+            if GUARD {
+                let total = u[0].abs() + next[0].abs() + u[1].abs() + next[1].abs();
+                let within = total <= 1e18; // false for NaN too
+                if !within {
+                    // The library clamps here; this rope never comes near the bound.
+                    continue;
+                }
+            }
+            *x = next;
+            *r = rest;
+        }
+    }
+    fn per_step(&self) -> u32 {
+        CHAIN as u32
+    }
+}
+
+// `vsqrt.f32` out of line, as the library's `HardwareSqrt` reaches it: stable Rust's
+// inline assembly names single-precision registers only with the unstable `vfp2` target
+// feature, and LLVM emits `vsqrt` only for `f32::sqrt`, which `core` lacks.
+#[cfg(target_abi = "eabihf")]
+core::arch::global_asm!(
+    ".section .text.cost_vsqrt,\"ax\",%progbits",
+    ".global cost_vsqrt",
+    ".type cost_vsqrt,%function",
+    ".fpu fpv4-sp-d16",
+    ".thumb_func",
+    "cost_vsqrt:",
+    "vsqrt.f32 s0, s0",
+    "bx lr",
+    ".size cost_vsqrt, . - cost_vsqrt",
+);
+#[cfg(target_abi = "eabihf")]
+unsafe extern "C" {
+    fn cost_vsqrt(x: f32) -> f32;
+}
+/// `√x` by `vsqrt.f32`.
+#[cfg(target_abi = "eabihf")]
+#[inline(always)]
+fn vsqrt(x: f32) -> f32 {
+    // SAFETY: reads and writes s0 only, defined above for this hard-float signature.
+    unsafe { cost_vsqrt(x) }
+}
+#[cfg(target_abi = "eabihf")]
+fn floor_rope<const GUARD: bool, const CARRY: bool>() -> Option<FloorRope<GUARD, CARRY>> {
+    let t = chain_tuning()?;
+    let mut x = [[0.0; 2]; CHAIN + 1];
+    for (i, x) in x.iter_mut().enumerate() {
+        *x = [i as f32, if i % 2 == 0 { 0.0 } else { 0.3 }];
+    }
+    Some(FloorRope {
+        k: t.stiffness() as f32,
+        d: t.damping() as f32,
+        rest: [1.0; CHAIN],
+        weights: [(0.5, 0.5); CHAIN],
+        x,
+        r: [[0.0; 2]; CHAIN + 1],
+        u: [[0.0; 2]; CHAIN + 1],
+    })
+}
+
+// ---------------------------------------------------------------------------------------
+// The knob
+// ---------------------------------------------------------------------------------------
 
 /// `Knob::update` at 1 kHz with 16 detents between endstops, fed by a scripted encoder
 /// that sweeps the whole range and beyond both endstops (the script is one add and one
@@ -207,13 +502,14 @@ impl<S: Scalar> Bench for KnobUpdate<S> {
         }
     }
 }
-fn knob_torque<S: Scalar>() -> Option<KnobUpdate<S>> {
-    let config = KnobConfig::new(1e-3, 1e-5, 0.05)
+fn knob_update<S: Scalar>() -> Option<KnobUpdate<S>> {
+    // 1 kHz, 1e−5 kg·m², 50 mN·m, a 14-bit encoder (the knob module's example).
+    let config = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384)
         .endstops(0.0, 3.0)
         .detent_count(16)
-        .detent_strength(0.3);
+        .detent_stiffness(0.05);
     Some(KnobUpdate {
-        knob: Knob::new(&config, 0.0).ok()?,
+        knob: Knob::new(&config, S::ZERO).ok()?,
         angle: S::from_f64(-0.2),
         // 256 steps cover 3.4 rad: both endstops and every detent.
         increment: S::from_f64(3.4 / 256.0),
@@ -222,12 +518,16 @@ fn knob_torque<S: Scalar>() -> Option<KnobUpdate<S>> {
     })
 }
 
-/// The table of kernels: `"name", Backend => expression giving an Option<impl Bench>;`.
+// ---------------------------------------------------------------------------------------
+// The table
+// ---------------------------------------------------------------------------------------
+
+/// The table of kernels: `"name", Backend => function giving an Option<impl Bench>;`.
 /// `None` (a configuration the backend rejects) is reported as a failure.
 macro_rules! kernels {
-    ($($name:literal, $S:ty => $make:expr;)*) => {
-        /// Measures every kernel of the table; false when one could not be built.
-        fn measure_all() -> bool {
+    ($fn:ident: $($name:literal, $S:ty => $make:expr;)*) => {
+        /// Measures every kernel of its table; false when one could not be built.
+        fn $fn() -> bool {
             let mut ok = true;
             $( ok &= report($name, <$S as Scalar>::NAME, $make); )*
             ok
@@ -236,43 +536,65 @@ macro_rules! kernels {
 }
 
 kernels! {
-    "value_1d", f32 => value::<f32>();
-    "value_1d", f64 => value::<f64>();
-    "value_1d", I16F16 => value::<I16F16>();
-    "value_1d", I32F32 => value::<I32F32>();
-    "kernel_1d", f32 => kernel_1d::<f32>();
-    "kernel_1d", f64 => kernel_1d::<f64>();
-    "kernel_1d", I16F16 => kernel_1d::<I16F16>();
-    "kernel_1d", I32F32 => kernel_1d::<I32F32>();
-    "batch_16", f32 => batch_16::<f32>();
-    "batch_16", I16F16 => batch_16::<I16F16>();
-    "distance_2d/exact", f32 => distance_2d::<f32, Exact>();
-    "distance_2d/exact", f64 => distance_2d::<f64, Exact>();
-    "distance_2d/exact", I16F16 => distance_2d::<I16F16, Exact>();
-    "distance_2d/exact", I32F32 => distance_2d::<I32F32, Exact>();
-    "distance_2d/linearised", f32 => distance_2d::<f32, Linearised>();
-    "distance_2d/linearised", I16F16 => distance_2d::<I16F16, Linearised>();
-    "distance_2d/linearised", I32F32 => distance_2d::<I32F32, Linearised>();
-    "distance_2d/approximate", f32 => distance_2d::<f32, stiffspring::length::Approximate>();
-    "distance_2d/approximate_newton", f32 => distance_2d::<f32, stiffspring::length::ApproximateNewton>();
-    "angular/angle", f32 => angular::<f32, stiffspring::scene::Angle>();
-    "angular/angle", I16F16 => angular::<I16F16, stiffspring::scene::Angle>();
-    "angular/wrapped", f32 => angular::<f32, WrappedAngle>();
-    "angular/wrapped", I16F16 => angular::<I16F16, WrappedAngle>();
-    "knob_torque", f32 => knob_torque::<f32>();
-    "knob_torque", f64 => knob_torque::<f64>();
-    "knob_torque", I16F16 => knob_torque::<I16F16>();
-    "knob_torque", I32F32 => knob_torque::<I32F32>();
+    measure_all:
+    "value_advance", f32 => value_advance::<f32>;
+    "value_step", f32 => value_step::<f32>;
+    "floor_value", f32 => floor_value;
+    "batch_step", f32 => batch_step::<f32>;
+    "batch_step_every2", f32 => batch_step_every2::<f32>;
+    "batch_step_every4", f32 => batch_step_every4::<f32>;
+    "batch_advance", f32 => batch_advance::<f32>;
+    "floor_hand", f32 => floor_hand;
+    "floor", f32 => floor::<f32>;
+    "value_advance", I16F16 => value_advance::<I16F16>;
+    "value_step", I16F16 => value_step::<I16F16>;
+    "batch_step", I16F16 => batch_step::<I16F16>;
+    "batch_advance", I16F16 => batch_advance::<I16F16>;
+    "floor", I16F16 => floor::<I16F16>;
+    "value_advance", I32F32 => value_advance::<I32F32>;
+    "value_step", I32F32 => value_step::<I32F32>;
+    "batch_step", I32F32 => batch_step::<I32F32>;
+    "batch_advance", I32F32 => batch_advance::<I32F32>;
+    "floor", I32F32 => floor::<I32F32>;
+    "value_step", f64 => value_step::<f64>;
+    "distance_2d/exact", f32 => distance_2d::<f32, Exact>;
+    "distance_2d/linearised", f32 => distance_2d::<f32, Linearised>;
+    "distance_2d/linearised", I16F16 => distance_2d::<I16F16, Linearised>;
+    "knob_update", f32 => knob_update::<f32>;
+    "knob_update", I16F16 => knob_update::<I16F16>;
 }
 
-/// The Cortex-M4F's `vsqrt.f32` kernel exists only on hard-float ARM targets.
+// The rest of the scene kernels: each scene step is a monomorphised function of 30–70 KB,
+// and these would not fit in the Cortex-M0 firmware's 256 KiB of flash (the microbit
+// map) beside the others.
+#[cfg(any(target_abi = "eabihf", not(target_os = "none")))]
+kernels! {
+    measure_scenes:
+    "distance_2d/exact", I16F16 => distance_2d::<I16F16, Exact>;
+    "distance_2d/exact", I32F32 => distance_2d::<I32F32, Exact>;
+    "distance_2d/exact", f64 => distance_2d::<f64, Exact>;
+    "point_2d", f32 => point_2d::<f32>;
+    "point_2d", I16F16 => point_2d::<I16F16>;
+    "angular", f32 => angular::<f32>;
+    "angular", I16F16 => angular::<I16F16>;
+}
+#[cfg(all(not(target_abi = "eabihf"), target_os = "none"))]
+fn measure_scenes() -> bool {
+    true
+}
+
+/// The Cortex-M4F's `vsqrt.f32` kernel and its floor exist only on hard-float ARM
+/// targets.
 #[cfg(target_abi = "eabihf")]
 fn measure_hardware() -> bool {
     report(
         "distance_2d/hardware_sqrt",
         "f32",
-        distance_2d::<f32, stiffspring::length::HardwareSqrt>(),
-    )
+        distance_2d::<f32, stiffspring::length::HardwareSqrt>,
+    ) & report("floor_rope/hardware_sqrt", "f32", floor_rope::<false, false>)
+        & report("floor_rope_guard/hardware_sqrt", "f32", floor_rope::<true, false>)
+        & report("floor_rope_carry/hardware_sqrt", "f32", floor_rope::<false, true>)
+        & report("floor_rope_guard_carry/hardware_sqrt", "f32", floor_rope::<true, true>)
 }
 #[cfg(not(target_abi = "eabihf"))]
 fn measure_hardware() -> bool {
@@ -350,8 +672,6 @@ fn count<B: Bench>(bench: &mut B, n: u32) -> u64 {
     let start = std::time::Instant::now();
     for _ in 0..n {
         bench.step();
-        // Keeps the loop from being unrolled and the state from living in registers
-        // across steps: a firmware's state lives in memory between two control periods.
         core::hint::black_box(&mut *bench);
     }
     start.elapsed().as_nanos() as u64
@@ -365,16 +685,18 @@ fn per_step_milli<B: Bench>(bench: &mut B) -> i64 {
     (second - first) * 1000 / (N2 - N1) as i64
 }
 
-/// Prints one CSV line for `bench`; false when it could not be built.
-fn report<B: Bench>(kernel: &str, backend: &str, bench: Option<B>) -> bool {
-    let Some(mut bench) = bench else {
+/// Builds a bench with `make`, measures it and prints its CSV line; false when it could
+/// not be built. Never inlined, so that each bench lives in this frame only while it is
+/// measured (the Cortex-M0's stack is 16 KiB).
+#[inline(never)]
+fn report<B: Bench>(kernel: &str, backend: &str, make: fn() -> Option<B>) -> bool {
+    let Some(mut bench) = make() else {
         say!("{},{},FAILED (set-up rejected)", kernel, backend);
         return false;
     };
     let overhead = per_step_milli(&mut Empty);
     let gross = per_step_milli(&mut bench);
-    let per = bench.per_step() as i64;
-    let net = (gross - overhead) / per;
+    let net = (gross - overhead) / bench.per_step() as i64;
     let sign = if net < 0 { "-" } else { "" };
     say!(
         "{},{},{}{}.{}{}{}",
@@ -402,7 +724,7 @@ fn run_all() -> bool {
         );
         say!("kernel,backend,nanoseconds_per_step");
     }
-    measure_all() & measure_hardware()
+    measure_all() & measure_scenes() & measure_hardware()
 }
 
 firmware::main!(run_all);

@@ -68,7 +68,7 @@ struct Sample {
 /// the torque computed from the encoder angle of period `n` acts over period `n + 1`
 /// (one period of delay); the hand's torque is held over each of 8 sub-steps.
 fn play<S: Scalar>(mut each: impl FnMut(&Sample, &KnobOutput<S>)) -> Option<(i32, usize)> {
-    let mut knob = Knob::<S>::new(&config(), 0.0).ok()?;
+    let mut knob = Knob::<S>::new(&config(), S::ZERO).ok()?;
     let (mut theta, mut omega, mut pending) = (0.0f64, 0.0f64, 0.0f64);
     let mut detent_changes = 0;
     let steps = (SECONDS / DT) as usize;
@@ -153,16 +153,19 @@ fn run() -> bool {
     settled & sweep::<Backend>()
 }
 
-/// The scripted encoder sweep, open loop, against the golden torques and detents of the
-/// `f64` knob. The torque may differ by the backend's rounding: on this sweep `f32` was
-/// measured within 2.1e−5 of the limit and `I16F16` within 6.5e−4 (the torque's own
-/// rounding, 1.2e−4 in tests/knob_fixed.rs, plus the angle's rounding to Q16.16), so the
-/// tolerances are 1e−4 and 2e−3, about three times the measurements. The detent index must match, except in the period next to a change
-/// of the golden index: an angle within a rounding of a switching point may switch one
-/// period apart (I16F16 rounds the detent boundaries to Q16.16), and there the torque is
-/// not compared either.
+/// The scripted encoder sweep, open loop, against the golden torques and detents
+/// (`firmware/src/golden/knob.rs`, from the `f64` model of the torque law in
+/// `tests/knob_golden.rs`, which the library's `f64` knob follows to 2.2e−16). The torque
+/// may differ by the backend's rounding: measured on this sweep, `f32` within 5.6e−6 of
+/// the limit and `I16F16` within 2.0e−4 (its own rounding, up to 5.5e−5 in
+/// `tests/knob_fixed.rs`, plus the angle's rounding to Q16.16 times the spring's and the
+/// damper's gains);
+/// the tolerances, 1e−4 and 2e−3, are about ten times that. The detent index must match,
+/// except in the period next to a change of the golden index: an angle within a rounding
+/// of a switching point may switch one period apart (I16F16 rounds the detent boundaries
+/// to Q16.16), and there the torque is not compared either.
 fn sweep<S: Scalar>() -> bool {
-    let Ok(mut knob) = Knob::<S>::new(&config(), 0.0) else {
+    let Ok(mut knob) = Knob::<S>::new(&config(), S::ZERO) else {
         say!("the configuration was rejected");
         return false;
     };
@@ -185,7 +188,7 @@ fn sweep<S: Scalar>() -> bool {
         }
     }
     say!(
-        "sweep: {} periods against the f64 knob, worst torque difference {} of the limit (tolerance {}), {} detent mismatches",
+        "sweep: {} periods against the golden f64 torques, worst difference {} of the limit (tolerance {}), {} detent mismatches",
         tally.samples,
         tally.worst as f32,
         tolerance as f32,

@@ -1,24 +1,29 @@
-//! Minimal firmwares for the flash-size report: `scripts/size-report` builds this example
-//! once per configuration, choosing it with `--cfg size="…"`, and measures each ELF.
+//! Firmware instrument: minimal firmwares for the flash-size report. `scripts/size-report`
+//! builds this example once per configuration, choosing it with `--cfg size="…"`, and
+//! measures each ELF (`target/size/report.csv`).
 //!
 //! | configuration | what the firmware does |
 //! |---|---|
-//! | (none) `empty` | boots and exits: cortex-m-rt, a panic handler, semihosting exit |
-//! | `value_f32` | one `SpringValue<f32, 1>` from raw coefficients, retargeted and stepped |
-//! | `value_f32_exact` | the same value tuned by the exact map (`Tuning::from_frequency`, libm in f64) |
-//! | `value_i16f16` | one `SpringValue<I16F16, 1>` from raw coefficients |
-//! | `batch16_f32` | a `SpringBatch<f32, 16>` of 16 values |
-//! | `rope_f32` | an f32 2D rope `Scene` (8 particles, gravity, exact length kernel) |
-//! | `knob` | an f32 `Knob` with detents and endstops, updated from an encoder |
+//! | `empty` (no cfg) | boots and exits: cortex-m-rt, a panic handler, semihosting exit |
+//! | `value_f32_raw` | one `SpringValue<f32, 1>` from raw coefficients in a `const` tuning (`tuning!`), retargeted and stepped |
+//! | `value_f32_raw_runtime` | the same from raw coefficients known at run time (validated at run time, in `f64`) |
+//! | `value_f32_exact_const` | the same tuned by the exact map at compile time (`tuning!(Tuning::from_frequency(…))`) |
+//! | `value_f32_exact_runtime` | the same tuned by the exact map at run time (`Tuning::from_frequency` in `f64`: there is no `f32` set-up path) |
+//! | `value_i16f16_raw` | one `SpringValue<I16F16, 1>` from a `const` raw tuning |
+//! | `batch16_f32` | a `SpringBatch<f32, 1, 16>` of 16 values from a `const` raw tuning |
+//! | `rope_f32` | an `f32` 2D rope `Scene` (8 particles, gravity, exact length kernel) |
+//! | `knob_f32` | an `f32` `Knob` with detents and endstops (set up at run time), updated from an encoder |
 //! | `everything` | all of the above in one firmware |
 //!
-//! Every input goes through `black_box`, so that the optimiser cannot fold a scene into
-//! constants. The panic handler does not format its message, so that a bounds check in
-//! the library does not pull `core::fmt` into the report. On the host the example runs
-//! the configured code once.
+//! Every input that is not meant to be a constant goes through `black_box`, so that the
+//! optimiser cannot fold a scene into constants. The panic handler does not format its
+//! message, so that a bounds check in the library does not pull `core::fmt` into the
+//! report. On the host the example runs the configured code once.
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
 use core::hint::black_box;
+#[allow(unused_imports)]
+use stiffspring::{SpringValue, Tuning, tuning};
 
 #[cfg(target_os = "none")]
 #[panic_handler]
@@ -40,111 +45,121 @@ fn main() {
 
 /// The code of the chosen configuration.
 fn configured() {
-    #[cfg(any(size = "value_f32", size = "everything"))]
-    value_f32();
-    #[cfg(any(size = "value_f32_exact", size = "everything"))]
-    value_f32_exact();
-    #[cfg(any(size = "value_i16f16", size = "everything"))]
-    value_i16f16();
+    #[cfg(any(size = "value_f32_raw", size = "everything"))]
+    value_f32_raw();
+    #[cfg(any(size = "value_f32_raw_runtime", size = "everything"))]
+    value_f32_raw_runtime();
+    #[cfg(any(size = "value_f32_exact_const", size = "everything"))]
+    value_f32_exact_const();
+    #[cfg(any(size = "value_f32_exact_runtime", size = "everything"))]
+    value_f32_exact_runtime();
+    #[cfg(any(size = "value_i16f16_raw", size = "everything"))]
+    value_i16f16_raw();
     #[cfg(any(size = "batch16_f32", size = "everything"))]
     batch16_f32();
     #[cfg(any(size = "rope_f32", size = "everything"))]
     rope_f32();
-    #[cfg(any(size = "knob", size = "everything"))]
-    knob();
+    #[cfg(any(size = "knob_f32", size = "everything"))]
+    knob_f32();
     black_box(());
 }
 
-/// A value from raw coefficients: what a firmware that precomputed `C_k`, `C_d` pays.
+/// A UI value at 60 Hz: set up from `tuning`, sent to a target, stepped for a second.
 #[allow(dead_code)]
-fn value_f32() {
-    use stiffspring::{SpringValue, Tuning};
-    let Ok(tuning) = Tuning::from_coefficients(black_box(0.05), black_box(0.3)) else {
+#[inline(always)]
+fn run_value(tuning: &Tuning) {
+    let Ok(mut v) = SpringValue::<f32, 1>::new([black_box(0.0)], tuning) else {
         return;
     };
-    let Ok(mut v) = SpringValue::<f32, 1>::new([black_box(0.0)], tuning, black_box(1.0 / 60.0))
-    else {
-        return;
-    };
-    let _ = v.set_target([black_box(100.0)]);
+    v.set_target([black_box(100.0)]);
     for _ in 0..black_box(60) {
-        v.step();
+        let _ = black_box(v.step());
     }
     black_box(v.position());
 }
 
-/// A value tuned by the exact map at run time.
+/// A value from raw coefficients, its tuning a `const`: what a firmware that
+/// precomputed `C_k`, `C_d` pays.
 #[allow(dead_code)]
-fn value_f32_exact() {
-    use stiffspring::{SpringValue, Tuning};
+fn value_f32_raw() {
+    const T: Tuning = tuning!(Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0));
+    run_value(&T);
+}
+
+/// Raw coefficients known only at run time: validated at run time, in `f64`.
+#[allow(dead_code)]
+fn value_f32_raw_runtime() {
     let dt = black_box(1.0 / 60.0);
-    let Ok(tuning) = Tuning::from_frequency(black_box(2.0), black_box(0.3), dt) else {
-        return;
-    };
-    let Ok(mut v) = SpringValue::<f32, 1>::new([black_box(0.0)], tuning, dt) else {
-        return;
-    };
-    let _ = v.set_target([black_box(100.0)]);
-    for _ in 0..black_box(60) {
-        v.step();
+    if let Ok(t) = Tuning::from_coefficients(black_box(0.05), black_box(0.3), dt) {
+        run_value(&t);
     }
-    black_box(v.position());
 }
 
-/// A fixed-point value from raw coefficients.
+/// A value tuned by the exact map at compile time: two coefficients, no libm.
 #[allow(dead_code)]
-fn value_i16f16() {
-    use stiffspring::{I16F16, SpringValue, Tuning};
-    let Ok(tuning) = Tuning::from_coefficients(black_box(0.05), black_box(0.3)) else {
-        return;
-    };
+fn value_f32_exact_const() {
+    const T: Tuning = tuning!(Tuning::from_frequency(2.0, 0.7, 1.0 / 60.0));
+    run_value(&T);
+}
+
+/// A value tuned by the exact map at run time (`f64`).
+#[allow(dead_code)]
+fn value_f32_exact_runtime() {
+    let dt = black_box(1.0 / 60.0);
+    if let Ok(t) = Tuning::from_frequency(black_box(2.0), black_box(0.7), dt) {
+        run_value(&t);
+    }
+}
+
+/// A fixed-point value from a `const` raw tuning.
+#[allow(dead_code)]
+fn value_i16f16_raw() {
+    use stiffspring::I16F16;
+    const T: Tuning = tuning!(Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0));
     let start = I16F16::from_bits(black_box(0));
-    let Ok(mut v) = SpringValue::<I16F16, 1>::new([start], tuning, black_box(1.0 / 60.0)) else {
+    let Ok(mut v) = SpringValue::<I16F16, 1>::new([start], &T) else {
         return;
     };
-    let _ = v.set_target([I16F16::from_bits(black_box(100 << 16))]);
+    v.set_target([I16F16::from_bits(black_box(100 << 16))]);
     for _ in 0..black_box(60) {
-        v.step();
+        let _ = black_box(v.step());
     }
     black_box(v.position());
 }
 
-/// Sixteen values in one batch.
+/// Sixteen values in one batch sharing a `const` raw tuning.
 #[allow(dead_code)]
 fn batch16_f32() {
-    use stiffspring::{SpringBatch, Tuning};
-    let Ok(mut batch) = SpringBatch::<f32, 16>::new(black_box(1.0 / 60.0)) else {
+    use stiffspring::SpringBatch;
+    const T: Tuning = tuning!(Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0));
+    let Ok(mut batch) = SpringBatch::<f32, 1, 16>::new(&T) else {
         return;
     };
+    let mut last = None;
     for i in 0..16 {
-        let Ok(tuning) = Tuning::from_coefficients(black_box(0.05), black_box(0.3)) else {
-            return;
-        };
-        if let Ok(k) = batch.push([black_box(0.0)], tuning) {
-            let _ = batch.set_target(k, [black_box(10.0 * i as f32)]);
+        if let Ok(k) = batch.push([black_box(0.0)]) {
+            batch.set_target(k, [black_box(10.0 * i as f32)]);
+            last = Some(k);
         }
     }
     for _ in 0..black_box(60) {
-        batch.step();
+        let _ = black_box(batch.step());
     }
-    black_box(batch.position(black_box(3)).ok());
+    if let Some(k) = last {
+        black_box(batch.position(k));
+    }
 }
 
 /// A hanging 2D rope: the scene with the exact length kernel.
 #[allow(dead_code)]
 fn rope_f32() {
-    use stiffspring::Tuning;
     use stiffspring::scene::{Scene, SceneConfig};
-    let Ok(config) = SceneConfig::new(black_box(1.0 / 120.0)).and_then(|c| c.gravity([0.0, -9.81]))
-    else {
+    const DT: f64 = 1.0 / 120.0;
+    const T: Tuning = tuning!(Tuning::from_coefficients(0.3, 0.3, DT));
+    let Ok(config) = SceneConfig::new(DT).and_then(|c| c.gravity([0.0, black_box(-9.81)])) else {
         return;
     };
-    let Ok(mut rope) = Scene::<f32, 2, 8, 7>::new(config) else {
-        return;
-    };
-    let Ok(tuning) = Tuning::from_coefficients(black_box(0.3), black_box(0.3)) else {
-        return;
-    };
+    let mut rope = Scene::<f32, 2, 8, 7>::new(config);
     let Ok(mut last) = rope.add_pinned([black_box(0.0), 0.0]) else {
         return;
     };
@@ -152,23 +167,28 @@ fn rope_f32() {
         let Ok(next) = rope.add_particle([black_box(0.1 * i as f32), 0.0], black_box(0.05)) else {
             return;
         };
-        let _ = rope.add_spring(last, next, black_box(0.1), tuning);
+        let _ = rope.add_spring(last, next, black_box(0.1), &T);
         last = next;
     }
     for _ in 0..black_box(240) {
-        rope.step();
+        let _ = black_box(rope.step());
     }
     black_box(rope.position(last).ok());
 }
 
 /// A haptic knob with detents and endstops, fed by an encoder.
 #[allow(dead_code)]
-fn knob() {
+fn knob_f32() {
     use stiffspring::{Knob, KnobConfig};
-    let config = KnobConfig::new(black_box(1e-3), black_box(1e-5), black_box(0.05))
-        .endstops(0.0, black_box(3.0))
-        .detent_count(black_box(16))
-        .detent_strength(black_box(0.05));
+    let config = KnobConfig::new(
+        black_box(1_000.0),
+        black_box(1e-5),
+        black_box(0.05),
+        black_box(16384),
+    )
+    .endstops(0.0, black_box(3.0))
+    .detent_count(black_box(16))
+    .detent_stiffness(black_box(0.05));
     let Ok(mut knob) = Knob::<f32>::new(&config, black_box(0.0)) else {
         return;
     };

@@ -4,11 +4,9 @@
 //! on the library and compares every sample with golden values computed here, on the
 //! host, from the independent f64 reference model (`lab::reference`): for a tuning from
 //! the exact map, the analytic solution of the continuous oscillator, which the library
-//! claims to sample exactly. The knob has no counterpart in the reference model: its
-//! golden torques come from the library's `f64` knob, whose torque law the `knob_*` tests
-//! check against an independently simulated rotor and independently computed
-//! eigenvalues. The golden values are kept in the repository as Rust
-//! source (`firmware/src/golden/*.rs`), so that the firmware can compile them in.
+//! claims to sample exactly. (The knob's golden values come from `tests/knob_golden.rs`.)
+//! The golden values are kept in the repository as Rust source (`firmware/src/golden/*.rs`),
+//! so that the firmware can compile them in.
 //!
 //! This test recomputes them and fails when a file is missing or stale. To regenerate:
 //!
@@ -16,8 +14,8 @@
 //! STIFFSPRING_BLESS=1 cargo test --test golden
 //! ```
 
-use firmware::golden::{knob as knob_golden, rope as rope_golden, value as value_golden};
-use firmware::scenes::{knob as knob_scene, rope as rope_scene, value as value_scene};
+use firmware::golden::{rope as rope_golden, value as value_golden};
+use firmware::scenes::{rope as rope_scene, value as value_scene};
 use lab::golden::{check_or_bless, f64_table};
 use lab::reference;
 use std::fmt::Write as _;
@@ -209,42 +207,4 @@ fn rope_scene_golden_values_are_current() {
         HINT,
     );
     assert_eq!(rope_golden::EVERY, ROPE_EVERY);
-}
-
-/// The `f64` knob on the scripted sweep: torque (fraction of the limit) and detent index
-/// per period.
-fn play_knob_sweep() -> Vec<Vec<f64>> {
-    let mut knob = stiffspring::Knob::<f64>::new(&knob_scene::config(), 0.0).unwrap();
-    let (mut torques, mut detents) = (Vec::new(), Vec::new());
-    for n in 0..knob_scene::SWEEP_STEPS {
-        let out = knob.update(knob_scene::sweep_angle(n));
-        torques.push(out.torque);
-        detents.push(f64::from(out.detent));
-    }
-    vec![torques, detents]
-}
-
-#[test]
-fn knob_sweep_golden_values_are_current() {
-    let tracks = play_knob_sweep();
-    let source = render(
-        "knob",
-        "the torque (a fraction of the limit) and the detent index of the `f64` knob\n\
-         //! after each period of the scripted encoder sweep.",
-        "the library's f64\n//! knob (the reference model has no knob)",
-        "SWEEP",
-        &[("torque", tracks[0].clone()), ("detent", tracks[1].clone())],
-    );
-    check_or_bless(
-        &golden_file("knob"),
-        &source,
-        &tracks,
-        &knob_golden::SWEEP,
-        RELATIVE_AGREEMENT,
-        HINT,
-    );
-    // The sweep crosses every detent both ways.
-    let detents = &tracks[1];
-    let changes = detents.windows(2).filter(|w| w[0] != w[1]).count();
-    assert!(changes >= 2 * 19, "{changes} detent changes");
 }

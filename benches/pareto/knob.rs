@@ -1,7 +1,7 @@
 //! The knob torque scene: [`Knob::update`] once per control period, fed by an encoder.
 //!
-//! A knob of `1e−5 kg·m²` with a 50 mN·m limit, endstops at 0 and 3 rad and 16 detents
-//! of strength 0.3 between them (the configuration of the firmware `cost` harness), read
+//! A knob of `1e−5 kg·m²` with a 50 mN·m limit, endstops at 0 and 3 rad (0.15 N·m/rad)
+//! and 16 detents of 0.1 N·m/rad between them, read
 //! by a 14-bit encoder while a hand turns it through `θ(t) = 1.5 + 1.7·sin(π·t)` rad: both
 //! endstops and every detent, in both directions, in 2 s, at 1 and 10 kHz.
 //!
@@ -21,10 +21,11 @@ pub const DURATION: f64 = 2.0;
 
 /// The knob's configuration at `rate`.
 pub fn config(rate: f64) -> KnobConfig {
-    KnobConfig::new(1.0 / rate, 1e-5, 0.05)
+    KnobConfig::new(rate, 1e-5, 0.05, 16384)
         .endstops(0.0, 3.0)
+        .endstop_stiffness(0.15)
         .detent_count(16)
-        .detent_strength(0.3)
+        .detent_stiffness(0.1)
 }
 
 /// The encoder's readings, one per control period.
@@ -42,7 +43,7 @@ pub fn angles(rate: f64) -> Vec<f64> {
 
 /// The torque of every period, in `f64`; `None` if the backend rejects the knob.
 fn torques<S: Scalar>(rate: f64) -> Option<Vec<f64>> {
-    let mut knob = Knob::<S>::new(&config(rate), 1.5).ok()?;
+    let mut knob = Knob::<S>::new(&config(rate), S::from_f64(1.5)).ok()?;
     Some(
         angles(rate)
             .iter()
@@ -67,7 +68,7 @@ fn entry<S: Scalar>(rate: f64, reference: &[f64]) -> Option<Entry> {
         .zip(reference)
         .map(|(a, b)| (a - b).abs())
         .fold(0.0, f64::max);
-    let start = Knob::<S>::new(&config(rate), 1.5).ok()?;
+    let start = Knob::<S>::new(&config(rate), S::from_f64(1.5)).ok()?;
     let mut knob = start.clone();
     let angles: Vec<S> = angles(rate).into_iter().map(S::from_f64).collect();
     let steps = angles.len();

@@ -1,20 +1,35 @@
 //! Run time against error, side by side with the peer crates, in one run.
 //!
 //! ```sh
-//! cargo bench --bench pareto            # about a minute
-//! cargo bench --bench pareto -- --quick # fewer rounds, for a smoke test
+//! cargo bench --bench pareto                        # everything, a few minutes
+//! cargo bench --bench pareto -- --quick             # fewer rounds, for a smoke test
+//! cargo bench --bench pareto -- --only targets,xpbd # some sections
+//! cargo bench --bench pareto -- --no-count          # without the callgrind counts
 //! ```
 //!
-//! Writes `target/pareto/results.csv` (columns
-//! `scene,implementation,backend,step_hz,ns_per_step,max_rel_error`) and
-//! `target/pareto/pareto.svg` (error against time per step, log-log, one panel per scene
-//! and step rate), and prints the ratios against each peer. See `BENCHMARKS.md` for how
-//! to read them.
+//! Sections (`--only` takes a comma-separated list): `values` (the 1D scenes against the
+//! peers), `targets` (the host cost targets of issue 12, `targets.rs`), `networks`,
+//! `xpbd` (XPBD with small steps against stiffspring at equal cost, `xpbd.rs`), `knob`,
+//! `precision` (the error-against-cost table of issue 10, `precision.rs`).
 //!
-//! - `ns_per_step` is the median over interleaved batches (`lab::measure`) of one value
-//!   step, one knob update, or one spring of a network step (a scene step divided by its
-//!   springs). Every implementation of a scene is timed in the same process, round-robin,
-//!   so the ratios hold on a noisy machine; absolute numbers move from run to run.
+//! Writes `target/pareto/results.csv` (columns
+//! `scene,implementation,backend,step_hz,ns_per_step,max_rel_error`),
+//! `target/pareto/pareto.svg` (error against time per step, log-log, one panel per scene
+//! and step rate), `target/pareto/targets.csv`, `target/pareto/xpbd.csv`,
+//! `target/pareto/xpbd.svg` and `target/pareto/precision.csv`, and prints the tables of
+//! `docs/benchmarks.md`.
+//!
+//! Instruction counts: where Valgrind is installed, the bench runs itself again under
+//! callgrind once per counted case (`--count <section> <case>…`, a mode for that only),
+//! counting the instructions inside `lab::measure::counted`, which holds the stepping
+//! loop and nothing else (see `lab::measure::callgrind` for the exact command). The
+//! callgrind output files are kept in `target/pareto/callgrind/`.
+//!
+//! - Times are the fastest of interleaved batches (`lab::measure::fastest`) of one value
+//!   step, one knob update, one spring of a network step (a scene step divided by its
+//!   springs), one value step of a batch, or one frame. Every implementation of a scene
+//!   is timed in the same process, round-robin, so the ratios hold on a noisy machine;
+//!   absolute numbers move from run to run.
 //! - `max_rel_error` is the worst deviation over the run from the analytic solution
 //!   (1D scenes, `values.rs` and `lab::pareto`), from the f64 reference model (networks,
 //!   `networks.rs`), or
@@ -22,10 +37,13 @@
 
 mod knob;
 mod networks;
+mod precision;
+mod targets;
 mod values;
+mod xpbd;
 
 use lab::measure::{self, Candidate, Plan};
-use lab::pareto::ValueScene;
+use lab::pareto::{BATCH, BatchScene, ValueScene};
 use lab::plot::{Grid, Plot, Series};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -63,7 +81,7 @@ fn time(pending: Vec<Pending>, plan: Plan) -> Vec<Row> {
             )
         })
         .unzip();
-    let ns = measure::medians(&mut candidates, plan);
+    let ns = measure::fastest(&mut candidates, plan);
     meta.into_iter()
         .zip(ns)
         .map(
@@ -77,6 +95,38 @@ fn time(pending: Vec<Pending>, plan: Plan) -> Vec<Row> {
             },
         )
         .collect()
+}
+
+/// Instructions per step of every implementation of the 1D scenes released from rest at
+/// 1 kHz (2000 steps per run, so the reset between runs is amortised), by callgrind:
+/// `(scene, implementation, backend, instructions)`.
+fn value_counts() -> Vec<(String, String, String, f64)> {
+    let mut out = Vec::new();
+    for (s, scene) in ValueScene::all().iter().enumerate() {
+        if scene.rate != 1000.0 || scene.velocity != 0.0 {
+            continue;
+        }
+        for (e, entry) in values::entries(scene).iter().enumerate() {
+            if let Some(n) = count(&["values".into(), s.to_string(), e.to_string()]) {
+                out.push((
+                    scene.name(),
+                    entry.implementation.to_string(),
+                    entry.backend.to_string(),
+                    n as f64 / scene.steps() as f64,
+                ));
+            }
+        }
+    }
+    out
+}
+
+fn value_counts_report(counts: &[(String, String, String, f64)]) {
+    println!("\n1D value step at 1 kHz: host instructions per step (callgrind)");
+    println!("| scene | implementation | backend | instructions/step |");
+    println!("|---|---|---|---|");
+    for (scene, imp, backend, n) in counts {
+        println!("| {scene} | {imp} | {backend} | {n:.1} |");
+    }
 }
 
 fn value_rows(plan: Plan) -> Vec<Row> {
@@ -282,13 +332,16 @@ fn ratio(a: f64, b: f64) -> String {
     format!("{:.2}×", a / b)
 }
 
-/// The tables of ratios against each peer, for the terminal (and BENCHMARKS.md).
+/// The tables of ratios against each peer, for the terminal (and `docs/benchmarks.md`).
 fn report(rows: &[Row]) {
     let find = |scene: &str, hz: f64, imp: &str, backend: &str| {
         rows.iter().find(|r| {
             r.scene == scene && r.step_hz == hz && r.implementation == imp && r.backend == backend
         })
     };
+    if !rows.iter().any(|r| r.scene.starts_with("step")) {
+        return network_report(rows);
+    }
     println!(
         "\n1D value step: stiffspring's time and error against each peer's (same scene, same backend where the peer has it)"
     );
@@ -323,6 +376,11 @@ fn report(rows: &[Row]) {
         );
     }
     println!("\n(time ratios are stiffspring/peer: below 1× is faster; errors are ours vs theirs)");
+    network_report(rows);
+}
+
+/// The networks' and the knob's tables.
+fn network_report(rows: &[Row]) {
     for scene in ["rope_64", "jelly_16x16"] {
         println!("\n{scene}: ns per spring step and error");
         println!("| implementation | backend | ns/spring | × minimal-gs f32 | error |");
@@ -356,9 +414,589 @@ fn report(rows: &[Row]) {
     }
 }
 
+/// The bench's options.
+struct Options {
+    quick: bool,
+    count: bool,
+    only: Option<Vec<String>>,
+}
+
+impl Options {
+    fn parse(args: &[String]) -> Options {
+        let only = args
+            .iter()
+            .position(|a| a == "--only")
+            .and_then(|i| args.get(i + 1))
+            .map(|v| v.split(',').map(str::to_string).collect());
+        Options {
+            quick: args.iter().any(|a| a == "--quick"),
+            count: !args.iter().any(|a| a == "--no-count"),
+            only,
+        }
+    }
+
+    fn runs(&self, section: &str) -> bool {
+        self.only
+            .as_ref()
+            .is_none_or(|o| o.iter().any(|s| s == section))
+    }
+}
+
+/// The callgrind child: `--count <section> <case…>` runs one case inside
+/// `lab::measure::counted` and exits.
+fn child(args: &[String]) {
+    let index = |i: usize| -> usize { args[i].parse().expect("case index") };
+    match args[0].as_str() {
+        "targets" => {
+            let scene = BatchScene::all()[index(1)];
+            targets::each(&scene, Some(index(2)), &mut targets::Count(&scene));
+        }
+        "xpbd" => {
+            let model = &xpbd::models()[index(1)];
+            xpbd::each(
+                index(1),
+                &args[2],
+                Some(index(3)),
+                &mut xpbd::Count(model.frames),
+            );
+        }
+        "precision" => precision::count(index(1), index(2)),
+        "values" => {
+            let scene = ValueScene::all()[index(1)];
+            let mut entries = values::entries(&scene);
+            let entry = &mut entries[index(2)];
+            measure::counted(&mut || {
+                (entry.candidate.batch)(1);
+            });
+        }
+        other => panic!("no countable section {other}"),
+    }
+}
+
+/// The instructions of one counted case: the bench run again under callgrind with
+/// `--count <case…>`. `None` without Valgrind.
+fn count(case: &[String]) -> Option<u64> {
+    let exe = std::env::current_exe().ok()?;
+    let dir = out_dir().join("callgrind");
+    std::fs::create_dir_all(&dir).ok()?;
+    let out = dir.join(format!("{}.out", case.join("_")));
+    let mut args = vec!["--count".to_string()];
+    args.extend(case.iter().cloned());
+    measure::callgrind(&exe, &args, &out)
+}
+
+/// One row of `targets.csv`.
+struct TargetRow {
+    scene: String,
+    step_hz: f64,
+    implementation: &'static str,
+    bytes: usize,
+    ns: f64,
+    instructions: Option<f64>,
+    error: f64,
+}
+
+fn target_rows(plan: Plan, counting: bool) -> Vec<TargetRow> {
+    let mut rows = Vec::new();
+    for (s, scene) in BatchScene::all().iter().enumerate() {
+        eprintln!("  targets: {} at {} Hz", scene.name(), scene.rate);
+        let mut collect = targets::Collect(scene, Vec::new());
+        targets::each(scene, None, &mut collect);
+        let (meta, mut candidates): (Vec<_>, Vec<_>) = collect
+            .1
+            .into_iter()
+            .map(|p| ((p.implementation, p.bytes, p.error), p.candidate))
+            .unzip();
+        let ns = measure::fastest(&mut candidates, plan);
+        for (i, ((implementation, bytes, error), ns)) in meta.into_iter().zip(ns).enumerate() {
+            let instructions = if counting {
+                count(&["targets".into(), s.to_string(), i.to_string()])
+                    .map(|n| n as f64 / (scene.frames() * BATCH) as f64)
+            } else {
+                None
+            };
+            rows.push(TargetRow {
+                scene: scene.name(),
+                step_hz: scene.rate,
+                implementation,
+                bytes,
+                ns,
+                instructions,
+                error,
+            });
+        }
+    }
+    rows
+}
+
+fn targets_csv(rows: &[TargetRow]) -> String {
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.scene.clone(),
+                r.step_hz.to_string(),
+                r.implementation.to_string(),
+                r.bytes.to_string(),
+                format!("{:.4}", r.ns),
+                r.instructions.map_or(String::new(), |i| format!("{i:.2}")),
+                format!("{:.3e}", r.error),
+            ]
+        })
+        .collect();
+    lab::table::csv(
+        &[
+            "scene",
+            "step_hz",
+            "implementation",
+            "bytes_per_value",
+            "ns_per_value_step",
+            "instructions_per_value_step",
+            "max_rel_error",
+        ],
+        &cells,
+    )
+}
+
+/// The targets table and the goals of issue 12, for the terminal (and the docs).
+fn targets_report(rows: &[TargetRow]) {
+    let instr = |r: &TargetRow| r.instructions.map_or("–".into(), |i| format!("{i:.1}"));
+    println!("\nHost cost targets (issue 12): {BATCH} f32 values stepped frame by frame");
+    println!(
+        "| scene | Hz | implementation | bytes/value | ns/value step | × minimal | instructions/value step | error |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    let find = |scene: &str, hz: f64, imp: &str| {
+        rows.iter()
+            .find(|r| r.scene == scene && r.step_hz == hz && r.implementation == imp)
+    };
+    for r in rows {
+        let floor = find(&r.scene, r.step_hz, "minimal").map_or(f64::NAN, |m| m.ns);
+        println!(
+            "| {} | {} | {} | {} | {:.3} | {} | {} | {:.1e} |",
+            r.scene,
+            r.step_hz,
+            r.implementation,
+            r.bytes,
+            r.ns,
+            ratio(r.ns, floor),
+            instr(r),
+            r.error
+        );
+    }
+    // The goals, over every scene: the worst case of each.
+    let over = |imp: &str, f: &dyn Fn(&TargetRow) -> Option<f64>| -> (f64, f64) {
+        rows.iter()
+            .filter(|r| r.implementation == imp)
+            .filter_map(f)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let range = |(lo, hi): (f64, f64), digits: usize| {
+        let (a, b) = (format!("{lo:.digits$}"), format!("{hi:.digits$}"));
+        if lo > hi {
+            "–".to_string()
+        } else if a == b {
+            a
+        } else {
+            format!("{a}–{b}")
+        }
+    };
+    let versus = |imp: &str, base: &str, f: &dyn Fn(&TargetRow, &TargetRow) -> f64| {
+        over(imp, &|r| find(&r.scene, r.step_hz, base).map(|b| f(r, b)))
+    };
+    println!("\n| target (issue 12) | goal | measured, over the six scenes |");
+    println!("|---|---|---|");
+    println!(
+        "| f32 value, no rest detection (`advance`) | ≤ 15 instructions/step, ≤ 1.1× the minimal kernel's time | {} instructions, {}× |",
+        range(over("value/advance", &|r| r.instructions), 1),
+        range(versus("value/advance", "minimal", &|r, b| r.ns / b.ns), 2)
+    );
+    println!(
+        "| f32 value, rest detection on (`step`) | ≤ 18 instructions/step | {} |",
+        range(over("value/step", &|r| r.instructions), 1)
+    );
+    println!(
+        "| f32 value (`step`) against animato's semi-implicit Euler | ≥ 5× faster at ≥ 1000× lower error | {}× faster, {}× lower error |",
+        range(
+            versus("value/step", "animato/semi-implicit-euler", &|r, b| b.ns
+                / r.ns),
+            2
+        ),
+        range(
+            versus("value/step", "animato/semi-implicit-euler", &|r, b| b.error
+                / r.error),
+            0
+        )
+    );
+    println!(
+        "| batch (`step`) | ≤ 15 instructions per value | {} (`advance`: {}) |",
+        range(over("batch/step", &|r| r.instructions), 1),
+        range(over("batch/advance", &|r| r.instructions), 1)
+    );
+}
+
+/// One row of `xpbd.csv`.
+struct XpbdRow {
+    scene: &'static str,
+    implementation: &'static str,
+    backend: &'static str,
+    substeps: usize,
+    clamped: usize,
+    ns_per_frame: f64,
+    instructions_per_frame: Option<f64>,
+    error: f64,
+}
+
+/// The reference of every model and its own error (against the run at half its step).
+fn xpbd_rows(plan: Plan, counting: bool) -> (Vec<XpbdRow>, Vec<(&'static str, f64)>) {
+    let mut rows = Vec::new();
+    let mut references = Vec::new();
+    for (m, model) in xpbd::models().iter().enumerate() {
+        eprintln!(
+            "  xpbd: {} reference at {} steps per frame",
+            model.name,
+            xpbd::REFERENCE_SUBSTEPS
+        );
+        let reference = model.reference(xpbd::REFERENCE_SUBSTEPS);
+        let half = model.reference(xpbd::REFERENCE_SUBSTEPS / 2);
+        references.push((model.name, model.error(&half, &reference)));
+        for backend in ["f32", "f64"] {
+            eprintln!("  xpbd: {} in {backend}", model.name);
+            let mut collect = xpbd::Collect {
+                model,
+                reference: &reference,
+                rows: Vec::new(),
+            };
+            xpbd::each(m, backend, None, &mut collect);
+            let (meta, mut candidates): (Vec<_>, Vec<_>) = collect
+                .rows
+                .into_iter()
+                .map(|p| {
+                    (
+                        (p.index, p.implementation, p.substeps, p.clamped, p.error),
+                        p.candidate,
+                    )
+                })
+                .unzip();
+            let ns = measure::fastest(&mut candidates, plan);
+            for ((index, implementation, substeps, clamped, error), ns) in meta.into_iter().zip(ns)
+            {
+                let instructions = if counting {
+                    count(&[
+                        "xpbd".into(),
+                        m.to_string(),
+                        backend.into(),
+                        index.to_string(),
+                    ])
+                    .map(|n| n as f64 / model.frames as f64)
+                } else {
+                    None
+                };
+                rows.push(XpbdRow {
+                    scene: model.name,
+                    implementation,
+                    backend,
+                    substeps,
+                    clamped,
+                    ns_per_frame: ns,
+                    instructions_per_frame: instructions,
+                    error,
+                });
+            }
+        }
+    }
+    (rows, references)
+}
+
+fn xpbd_csv(rows: &[XpbdRow]) -> String {
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.scene.to_string(),
+                r.implementation.to_string(),
+                r.backend.to_string(),
+                r.substeps.to_string(),
+                r.clamped.to_string(),
+                format!("{:.1}", r.ns_per_frame),
+                r.instructions_per_frame
+                    .map_or(String::new(), |i| format!("{i:.0}")),
+                format!("{:.3e}", r.error),
+            ]
+        })
+        .collect();
+    lab::table::csv(
+        &[
+            "scene",
+            "implementation",
+            "backend",
+            "substeps",
+            "clamped",
+            "ns_per_frame",
+            "instructions_per_frame",
+            "max_rel_error",
+        ],
+        &cells,
+    )
+}
+
+/// The cost of a row by `metric`: callgrind's instructions per frame (`None` if not
+/// counted) or the time of a frame.
+fn xpbd_cost(r: &XpbdRow, metric: Metric) -> Option<f64> {
+    match metric {
+        Metric::Instructions => r.instructions_per_frame,
+        Metric::Time => Some(r.ns_per_frame),
+    }
+}
+
+/// What "equal cost" means.
+#[derive(Clone, Copy, PartialEq)]
+enum Metric {
+    Instructions,
+    Time,
+}
+
+/// `curve`'s error at `cost`, interpolated log-log between the two points around it
+/// (`curve` sorted by cost, finite errors only); `None` outside the curve.
+fn at_cost(curve: &[(f64, f64)], cost: f64) -> Option<f64> {
+    let i = curve.iter().position(|&(c, _)| c >= cost)?;
+    if curve[i].0 == cost {
+        return Some(curve[i].1);
+    }
+    let (c1, e1) = curve[i.checked_sub(1)?];
+    let (c2, e2) = curve[i];
+    let t = (cost.ln() - c1.ln()) / (c2.ln() - c1.ln());
+    Some((e1.ln() + t * (e2.ln() - e1.ln())).exp())
+}
+
+fn xpbd_svg(rows: &[XpbdRow]) -> String {
+    let counted = rows.iter().any(|r| r.instructions_per_frame.is_some());
+    let (metric, unit) = if counted {
+        (Metric::Instructions, "instructions per frame (callgrind)")
+    } else {
+        (Metric::Time, "ns per frame")
+    };
+    let mut grid =
+        Grid::new("XPBD (small steps) against stiffspring: worst error against cost per frame")
+            .columns(2);
+    for scene in xpbd::MODELS {
+        for backend in ["f32", "f64"] {
+            let mut plot = Plot::new(format!("{scene}, {backend}"))
+                .x_label(unit)
+                .y_label("max relative error")
+                .log_x()
+                .log_y()
+                .size(560, 400);
+            for imp in ["xpbd", "stiffspring/exact", "stiffspring/raw"] {
+                let points: Vec<(f64, f64)> = rows
+                    .iter()
+                    .filter(|r| r.scene == scene && r.backend == backend && r.implementation == imp)
+                    .filter(|r| r.error.is_finite() && r.error < CEILING)
+                    .filter_map(|r| Some((xpbd_cost(r, metric)?, r.error)))
+                    .collect();
+                let series = Series::line(imp, points);
+                plot = plot.series(series);
+            }
+            grid = grid.plot(plot);
+        }
+    }
+    grid.render()
+}
+
+/// The XPBD tables: every run, then XPBD and stiffspring compared at equal cost.
+fn xpbd_report(rows: &[XpbdRow], references: &[(&'static str, f64)]) {
+    println!(
+        "\nXPBD with small steps against stiffspring (error against the f64 reference, relative to the size)"
+    );
+    for (scene, e) in references {
+        println!(
+            "{scene}: reference at {} steps per frame, its own error (against half as many) {e:.1e}",
+            xpbd::REFERENCE_SUBSTEPS
+        );
+    }
+    println!(
+        "| scene | backend | substeps | implementation | clamped springs | ns/frame | instructions/frame | error |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        println!(
+            "| {} | {} | {} | {} | {} | {:.0} | {} | {:.1e} |",
+            r.scene,
+            r.backend,
+            r.substeps,
+            r.implementation,
+            r.clamped,
+            r.ns_per_frame,
+            r.instructions_per_frame
+                .map_or("–".into(), |i| format!("{i:.0}")),
+            r.error
+        );
+    }
+    println!(
+        "\nAt equal cost: each XPBD point against stiffspring's error at the same cost, interpolated log-log between its substep counts"
+    );
+    println!(
+        "| scene | backend | cost | XPBD substeps | cost per frame | XPBD error | stiffspring/exact error | stiffspring/raw error | best |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|");
+    for metric in [Metric::Instructions, Metric::Time] {
+        let unit = match metric {
+            Metric::Instructions => "instructions",
+            Metric::Time => "time (ns)",
+        };
+        for scene in xpbd::MODELS {
+            for backend in ["f32", "f64"] {
+                let here = |r: &&XpbdRow| r.scene == scene && r.backend == backend;
+                let curve = |imp: &str| -> Vec<(f64, f64)> {
+                    let mut c: Vec<(f64, f64)> = rows
+                        .iter()
+                        .filter(here)
+                        .filter(|r| r.implementation == imp && r.error.is_finite())
+                        .filter_map(|r| Some((xpbd_cost(r, metric)?, r.error)))
+                        .collect();
+                    c.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    c
+                };
+                let (exact, raw) = (curve("stiffspring/exact"), curve("stiffspring/raw"));
+                for r in rows
+                    .iter()
+                    .filter(here)
+                    .filter(|r| r.implementation == "xpbd")
+                {
+                    let Some(cost) = xpbd_cost(r, metric) else {
+                        continue;
+                    };
+                    let (e, w) = (at_cost(&exact, cost), at_cost(&raw, cost));
+                    let cell = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.1e}"));
+                    // A winner only where stiffspring was measured at this cost.
+                    let best = match (e, w) {
+                        (Some(e), Some(w)) => [
+                            ("xpbd", r.error),
+                            ("stiffspring/exact", e),
+                            ("stiffspring/raw", w),
+                        ]
+                        .into_iter()
+                        .min_by(|a, b| a.1.total_cmp(&b.1))
+                        .map_or("–", |b| b.0),
+                        _ => "–",
+                    };
+                    println!(
+                        "| {scene} | {backend} | {unit} | {} | {:.0} | {:.1e} | {} | {} | {best} |",
+                        r.substeps,
+                        cost,
+                        r.error,
+                        cell(e),
+                        cell(w),
+                    );
+                }
+            }
+        }
+    }
+}
+
+fn precision_rows(plan: Plan, quick: bool, counting: bool) -> Vec<precision::Row> {
+    eprintln!("  precision: the study's grid at 60 Hz, 1 kHz and 10 kHz");
+    let runs = precision::runs(quick);
+    let mut rows = Vec::new();
+    for (b, &backend) in precision::BACKENDS.iter().enumerate() {
+        eprintln!("  precision: {} cost", backend.name());
+        let all = lab::precision::candidates(backend);
+        let mut candidates: Vec<Candidate> = all
+            .iter()
+            .map(|&c| precision::candidate(backend, c))
+            .collect();
+        candidates.push(precision::library(backend));
+        let ns = measure::fastest(&mut candidates, plan);
+        for (c, ns) in ns.into_iter().enumerate() {
+            let (candidate, (errors, rejected)) = match all.get(c) {
+                Some(&cand) => (cand.name(), precision::errors(&runs, backend, cand)),
+                None => ("kept (library kernel)".to_string(), ([None; 3], 0)),
+            };
+            let instructions = if counting {
+                count(&["precision".into(), b.to_string(), c.to_string()])
+                    .map(|n| n as f64 / precision::STEPS as f64)
+            } else {
+                None
+            };
+            rows.push(precision::Row {
+                backend: backend.name(),
+                candidate,
+                errors,
+                rejected,
+                instructions,
+                ns,
+            });
+        }
+    }
+    rows
+}
+
+fn precision_csv(rows: &[precision::Row]) -> String {
+    let e = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.3e}"));
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            vec![
+                r.backend.to_string(),
+                r.candidate.clone(),
+                e(r.errors[0]),
+                e(r.errors[1]),
+                e(r.errors[2]),
+                r.rejected.to_string(),
+                r.instructions.map_or(String::new(), |i| format!("{i:.2}")),
+                format!("{:.3}", r.ns),
+            ]
+        })
+        .collect();
+    lab::table::csv(
+        &[
+            "backend",
+            "candidate",
+            "max_rel_error_60hz",
+            "max_rel_error_1khz",
+            "max_rel_error_10khz",
+            "rejected_starts",
+            "host_instructions_per_step",
+            "host_ns_per_step",
+        ],
+        &cells,
+    )
+}
+
+fn precision_report(rows: &[precision::Row]) {
+    println!(
+        "\nPrecision (issue 10): worst error over the study's grid at each rate, and the host cost of a step of the study's model"
+    );
+    println!(
+        "| backend | representation | 60 Hz | 1 kHz | 10 kHz | rejected starts | host instructions/step | host ns/step |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    let e = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.1e}"));
+    for r in rows {
+        println!(
+            "| {} | `{}` | {} | {} | {} | {} | {} | {:.2} |",
+            r.backend,
+            r.candidate,
+            e(r.errors[0]),
+            e(r.errors[1]),
+            e(r.errors[2]),
+            r.rejected,
+            r.instructions.map_or("–".into(), |i| format!("{i:.1}")),
+            r.ns
+        );
+    }
+}
+
 fn main() {
-    let quick = std::env::args().any(|a| a == "--quick");
-    let (value_plan, network_plan) = if quick {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Some(i) = args.iter().position(|a| a == "--count") {
+        child(&args[i + 1..]);
+        return;
+    }
+    let options = Options::parse(&args);
+    let (value_plan, network_plan) = if options.quick {
         (
             Plan {
                 batch: Duration::from_micros(50),
@@ -381,19 +1019,52 @@ fn main() {
             },
         )
     };
-    eprintln!("pareto: measuring (interleaved medians; ratios hold, absolute ns move)");
-    let mut rows = value_rows(value_plan);
-    rows.extend(network_rows(network_plan));
-    rows.extend(knob_rows(value_plan));
-
+    let counting = options.count && !options.quick;
+    eprintln!("pareto: measuring (interleaved, fastest batch; ratios hold, absolute ns move)");
     let dir = out_dir();
     std::fs::create_dir_all(&dir).expect("create target/pareto");
-    std::fs::write(dir.join("results.csv"), csv(&rows)).expect("write results.csv");
-    std::fs::write(dir.join("pareto.svg"), svg(&rows)).expect("write pareto.svg");
-    report(&rows);
-    println!(
-        "\nwrote {} and {}",
-        dir.join("results.csv").display(),
-        dir.join("pareto.svg").display()
-    );
+    let mut written = Vec::new();
+
+    let mut rows = Vec::new();
+    if options.runs("values") {
+        rows.extend(value_rows(value_plan));
+    }
+    if options.runs("networks") {
+        rows.extend(network_rows(network_plan));
+    }
+    if options.runs("knob") {
+        rows.extend(knob_rows(value_plan));
+    }
+    if !rows.is_empty() {
+        std::fs::write(dir.join("results.csv"), csv(&rows)).expect("write results.csv");
+        std::fs::write(dir.join("pareto.svg"), svg(&rows)).expect("write pareto.svg");
+        written.extend(["results.csv", "pareto.svg"]);
+        report(&rows);
+    }
+    if counting && options.runs("values") {
+        value_counts_report(&value_counts());
+    }
+    if options.runs("xpbd") {
+        let (rows, references) = xpbd_rows(network_plan, counting);
+        std::fs::write(dir.join("xpbd.csv"), xpbd_csv(&rows)).expect("write xpbd.csv");
+        std::fs::write(dir.join("xpbd.svg"), xpbd_svg(&rows)).expect("write xpbd.svg");
+        written.extend(["xpbd.csv", "xpbd.svg"]);
+        xpbd_report(&rows, &references);
+    }
+    if options.runs("precision") {
+        let rows = precision_rows(value_plan, options.quick, counting);
+        std::fs::write(dir.join("precision.csv"), precision_csv(&rows))
+            .expect("write precision.csv");
+        written.push("precision.csv");
+        precision_report(&rows);
+    }
+    if options.runs("targets") {
+        let rows = target_rows(value_plan, counting);
+        std::fs::write(dir.join("targets.csv"), targets_csv(&rows)).expect("write targets.csv");
+        written.push("targets.csv");
+        targets_report(&rows);
+    }
+    for file in written {
+        println!("wrote {}", dir.join(file).display());
+    }
 }

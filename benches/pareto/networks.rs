@@ -338,31 +338,33 @@ pub struct StiffNet<S: Scalar, L: LengthKernel<S>, const P: usize, const K: usiz
 impl<S: Scalar, L: LengthKernel<S>, const P: usize, const K: usize> StiffNet<S, L, P, K> {
     /// `None` when the scene rejects the network.
     pub fn new(net: &Net, stepper: Stepper) -> Option<Self> {
-        let config = SceneConfig::new(net.dt())
+        let dt = net.dt();
+        let gravity = net.gravity.map(S::from_f64);
+        let config = SceneConfig::new(dt)
             .ok()?
-            .gravity(net.gravity)
+            .gravity(gravity)
             .ok()?
             .stepper(stepper);
-        let mut scene = Scene::<S, 2, P, K, L>::new(config).ok()?;
+        let mut scene = Scene::<S, 2, P, K, L>::new(config);
         let mut ids = Vec::new();
         for &(p, v, pinned) in &net.particles {
-            let p = [S::from_f64(p[0]), S::from_f64(p[1])];
+            let p = p.map(S::from_f64);
             let id = if pinned {
                 scene.add_pinned(p).ok()?
             } else {
-                let id = scene.add_particle(p, 0.01).ok()?;
+                let id = scene.add_particle(p, S::from_f64(0.01)).ok()?;
                 if v != [0.0; 2] {
-                    scene
-                        .set_velocity(id, [S::from_f64(v[0]), S::from_f64(v[1])])
-                        .ok()?;
+                    scene.set_velocity(id, v.map(S::from_f64)).ok()?;
                 }
                 id
             };
             ids.push(id);
         }
-        let tuning = Tuning::from_coefficients(net.coefficient, net.coefficient).ok()?;
+        let tuning = Tuning::from_coefficients(net.coefficient, net.coefficient, dt).ok()?;
         for &(a, b, rest) in &net.springs {
-            scene.add_spring(ids[a], ids[b], rest, tuning).ok()?;
+            scene
+                .add_spring(ids[a], ids[b], S::from_f64(rest), &tuning)
+                .ok()?;
         }
         Some(StiffNet {
             start: scene.clone(),
@@ -381,11 +383,12 @@ impl<S: Scalar, L: LengthKernel<S>, const P: usize, const K: usize> NetRunner
     }
     #[inline(always)]
     fn step(&mut self) {
-        self.scene.step();
+        let _ = self.scene.step();
     }
     fn position(&self, i: usize) -> [f64; 2] {
-        let p = self.scene.position(self.ids[i]).unwrap_or([S::ZERO; 2]);
-        [p[0].to_f64(), p[1].to_f64()]
+        self.scene
+            .precise_position(self.ids[i])
+            .unwrap_or([f64::NAN; 2])
     }
     fn particles(&self) -> usize {
         self.ids.len()

@@ -17,9 +17,7 @@
 //! starts on the analytic trajectory; stiffspring stores `u = x_n − x_{n−1}` and computes
 //! it from the analytic solution at set-up. Rest detection is switched off where an API
 //! allows it (stiffspring: a threshold of 1e−300; animato: `epsilon = 0`), so that every
-//! step of the run is a moving step; the fixed-point backends still stop in their dead
-//! band of `1/C_k` LSB (the library's rounding, see `src/scalar`) and the steps after that
-//! cost only the rest check.
+//! step of the run is a moving step.
 //!
 //! Error: `max |x_n − x(t_n)|` over the run, relative to the amplitude
 //! `max |x(t)|` of the analytic offset from the target (1 from rest; the overshoot of a
@@ -63,15 +61,14 @@ pub struct Stiff<S: Scalar> {
 impl<S: Scalar> Stiff<S> {
     /// `None` when the backend rejects the scene.
     pub fn new(scene: &ValueScene) -> Option<Self> {
-        let dt = scene.dt();
-        let tuning = Tuning::from_frequency(FREQUENCY, scene.zeta, dt).ok()?;
+        let tuning = Tuning::from_frequency(FREQUENCY, scene.zeta, scene.dt()).ok()?;
         let never = RestThreshold::new(1e-300, 1e-300).ok()?;
-        let mut value = SpringValue::new([S::ZERO], tuning, dt)
+        let mut value = SpringValue::new([S::ZERO], &tuning)
             .ok()?
             .with_rest_threshold(never);
-        value.set_target([S::from_f64(TARGET)]).ok()?;
+        value.try_set_target([S::from_f64(TARGET)]).ok()?;
         if scene.velocity != 0.0 {
-            value.fling([S::from_f64(scene.velocity)]).ok()?;
+            value.try_fling([S::from_f64(scene.velocity)]).ok()?;
         }
         Some(Stiff {
             start: value.clone(),
@@ -87,7 +84,7 @@ impl<S: Scalar> Runner for Stiff<S> {
     }
     #[inline(always)]
     fn step(&mut self) {
-        self.value.step();
+        let _ = self.value.step();
     }
     #[inline(always)]
     fn offset(&self) -> f64 {

@@ -1,6 +1,6 @@
 //! Live: run time against error of the 1D scene, stiffspring beside the peer crates.
 //!
-//! The short version of `cargo bench --bench pareto` (see BENCHMARKS.md): one scene, a
+//! The short version of `cargo bench --bench pareto` (see `docs/benchmarks.md`): one scene, a
 //! value released from rest toward its target (2 Hz, ζ = 0.3, a 60 Hz display, 2 s),
 //! every implementation timed in this process, interleaved, for about a tenth of a second.
 
@@ -11,7 +11,7 @@ use std::time::Duration;
 use stiffspring::{I16F16, I32F32, RestThreshold, Scalar, SpringValue, Tuning};
 
 /// A `SpringValue::<S, 1>` with the exact map, released from rest toward the target, rest
-/// detection off (and flung, for a fling scene): the library's runner, as in the pareto
+/// detection off (`advance`) (and flung, for a fling scene): the library's runner, as in the pareto
 /// bench (`benches/pareto/values.rs`).
 struct Stiff<S: Scalar> {
     start: SpringValue<S, 1>,
@@ -22,12 +22,12 @@ impl<S: Scalar> Stiff<S> {
     fn new(scene: &ValueScene) -> Option<Self> {
         let tuning = Tuning::from_frequency(FREQUENCY, scene.zeta, scene.dt()).ok()?;
         let never = RestThreshold::new(1e-300, 1e-300).ok()?;
-        let mut value = SpringValue::new([S::ZERO], tuning, scene.dt())
+        let mut value = SpringValue::new([S::ZERO], &tuning)
             .ok()?
             .with_rest_threshold(never);
-        value.set_target([S::from_f64(TARGET)]).ok()?;
+        value.try_set_target([S::from_f64(TARGET)]).ok()?;
         if scene.velocity != 0.0 {
-            value.fling([S::from_f64(scene.velocity)]).ok()?;
+            value.try_fling([S::from_f64(scene.velocity)]).ok()?;
         }
         Some(Stiff {
             start: value.clone(),
@@ -43,7 +43,7 @@ impl<S: Scalar> Runner for Stiff<S> {
     }
     #[inline(always)]
     fn step(&mut self) {
-        self.value.step();
+        self.value.advance();
     }
     #[inline(always)]
     fn offset(&self) -> f64 {

@@ -9,15 +9,15 @@ use std::path::Path;
 use stiffspring::{Knob, KnobConfig};
 
 /// The library's knob for [`compare`]: detents `width` apart with small-signal stiffness
-/// `kp` at period `dt`, damping ratio 0.7, two counts of hysteresis, in `f32`.
+/// `kp` (N·m/rad) at period `dt`, damping ratio 0.7 (the default), two counts of
+/// hysteresis, a 14-bit encoder, in `f32`.
 fn knob_law(dt: f64, width: f64, kp: f64) -> KnobLaw {
-    let config = KnobConfig::new(dt, INERTIA, LIMIT)
+    let config = KnobConfig::new(1.0 / dt, INERTIA, LIMIT, 16384)
         .detent_width(width)
-        .hysteresis(2.0 * COUNT);
-    let strength = kp / config.stiffness_at_full_strength().expect("valid config");
-    let mut knob =
-        Knob::<f32>::new(&config.detent_strength(strength), 0.0).expect("accepted strength");
-    let (_, cd) = knob.loop_coefficients()[0];
+        .hysteresis(2.0 * COUNT)
+        .detent_stiffness(kp);
+    let mut knob = Knob::<f32>::new(&config, 0.0).expect("accepted stiffness");
+    let cd = knob.loop_coefficients()[0].map_or(0.0, |c| c.damping);
     let law = move |angle: f64| {
         let out = knob.update(angle as f32);
         (f64::from(out.torque) * LIMIT, out.detent)
@@ -63,11 +63,11 @@ pub fn against_pd() {
 pub fn trace(dir: &Path) {
     let dt = 1e-3;
     let width = TAU / DETENTS;
-    let config = KnobConfig::new(dt, INERTIA, LIMIT)
+    let config = KnobConfig::new(1.0 / dt, INERTIA, LIMIT, 16384)
         .detent_width(width)
-        .hysteresis(2.0 * COUNT);
-    let strength = 0.1 / config.stiffness_at_full_strength().expect("valid");
-    let mut knob = Knob::<f32>::new(&config.detent_strength(strength), 0.0).expect("valid");
+        .hysteresis(2.0 * COUNT)
+        .detent_stiffness(0.05);
+    let mut knob = Knob::<f32>::new(&config, 0.0).expect("valid");
     let mut plant = Plant::new(INERTIA, dt, 1.0);
     // The finger drags the knob at 0.5 rad/s for 1.2 s (through about two and a half
     // detents), then lets go halfway between two.

@@ -26,20 +26,20 @@ fn rope_error<S: Scalar, L: LengthKernel<S>>(stepper: Stepper) -> f64 {
     if stepper == Stepper::Jacobi {
         // Same scene, the other stepper: rebuild with it.
         let config = SceneConfig::new(rope_scene::DT)
-            .and_then(|c| c.gravity(rope_scene::GRAVITY))
+            .and_then(|c| c.gravity(rope_scene::GRAVITY.map(S::from_f64)))
             .expect("valid")
             .stepper(Stepper::Jacobi);
-        let mut jacobi = Scene::new(config).expect("valid");
-        let tuning = Tuning::from_coefficients(rope_scene::COEFFICIENT, rope_scene::COEFFICIENT)
-            .expect("valid");
+        let mut jacobi = Scene::new(config);
+        let c = rope_scene::COEFFICIENT;
+        let tuning = Tuning::from_coefficients(c, c, rope_scene::DT).expect("valid");
         let mut prev = jacobi.add_pinned([S::ZERO, S::ZERO]).expect("room");
         for i in 1..rope_scene::PARTICLES {
             let x = S::from_f64(i as f64 * rope_scene::SEGMENT);
             let next = jacobi
-                .add_particle([x, S::ZERO], rope_scene::MASS)
+                .add_particle([x, S::ZERO], S::from_f64(rope_scene::MASS))
                 .expect("room");
             jacobi
-                .add_spring(prev, next, rope_scene::SEGMENT, tuning)
+                .add_spring(prev, next, S::from_f64(rope_scene::SEGMENT), &tuning)
                 .expect("valid");
             prev = next;
         }
@@ -48,7 +48,7 @@ fn rope_error<S: Scalar, L: LengthKernel<S>>(stepper: Stepper) -> f64 {
     let length = rope_scene::SEGMENT * (rope_scene::PARTICLES - 1) as f64;
     let mut worst = 0.0f64;
     for _ in 0..rope_scene::STEPS {
-        rope.step();
+        let _ = rope.step();
         match stepper {
             Stepper::GaussSeidel => net.step_gauss_seidel(rope_scene::DT),
             Stepper::Jacobi => net.step_jacobi(rope_scene::DT),
@@ -119,7 +119,7 @@ pub fn rope(dir: &Path) {
             frames.push(snapshot(&rope));
             times.push(n as f64 * rope_scene::DT);
         }
-        rope.step();
+        let _ = rope.step();
     }
     let path = dir.join("rope.svg");
     std::fs::write(
@@ -184,12 +184,9 @@ fn jelly_springs() -> Vec<(usize, usize, f64)> {
 
 type Jelly<S> = Scene<S, 2, { W * H }, { 2 * W * H + 2 * (W - 1) * (H - 1) }>;
 
-fn build_jelly<S: Scalar>(stepper: Stepper) -> (Jelly<S>, Vec<ParticleId>)
-where
-    Exact: LengthKernel<S>,
-{
+fn build_jelly<S: Scalar>(stepper: Stepper) -> (Jelly<S>, Vec<ParticleId>) {
     let config = SceneConfig::new(DT).expect("valid").stepper(stepper);
-    let mut jelly = Scene::new(config).expect("valid");
+    let mut jelly = Scene::new(config);
     let mut ids = Vec::new();
     for r in 0..H {
         for c in 0..W {
@@ -197,14 +194,14 @@ where
             ids.push(if r == 0 {
                 jelly.add_pinned(p).expect("room")
             } else {
-                jelly.add_particle(p, 0.01).expect("room")
+                jelly.add_particle(p, S::from_f64(0.01)).expect("room")
             });
         }
     }
-    let tuning = Tuning::from_coefficients(JELLY_C, JELLY_C).expect("valid");
+    let tuning = Tuning::from_coefficients(JELLY_C, JELLY_C, DT).expect("valid");
     for (a, b, rest) in jelly_springs() {
         jelly
-            .add_spring(ids[a], ids[b], rest, tuning)
+            .add_spring(ids[a], ids[b], S::from_f64(rest), &tuning)
             .expect("within the limit");
     }
     for id in &ids[(H - 1) * W..] {
@@ -235,16 +232,13 @@ fn reference_jelly(stepper: Stepper) -> Network<2> {
     net
 }
 
-fn jelly_error<S: Scalar>(stepper: Stepper) -> f64
-where
-    Exact: LengthKernel<S>,
-{
+fn jelly_error<S: Scalar>(stepper: Stepper) -> f64 {
     let (mut jelly, ids) = build_jelly::<S>(stepper);
     let mut net = reference_jelly(stepper);
     let size = CELL * (W - 1) as f64;
     let mut worst = 0.0f64;
     for _ in 0..JELLY_STEPS {
-        jelly.step();
+        let _ = jelly.step();
         match stepper {
             Stepper::GaussSeidel => net.step_gauss_seidel(DT),
             Stepper::Jacobi => net.step_jacobi(DT),
@@ -283,7 +277,7 @@ pub fn jelly(dir: &Path) {
     let (mut jelly, ids) = build_jelly::<f32>(Stepper::GaussSeidel);
     let edges: Vec<(usize, usize)> = jelly
         .springs()
-        .map(|(_, a, b)| (a.index(), b.index()))
+        .map(|(_, a, b)| (a.slot(), b.slot()))
         .collect();
     let (particles, springs) = jelly.active();
     let mut frames = Vec::new();
@@ -305,7 +299,7 @@ pub fn jelly(dir: &Path) {
             asleep_at = Some(n);
             break;
         }
-        jelly.step();
+        let _ = jelly.step();
     }
     match asleep_at {
         Some(n) => println!(

@@ -5,8 +5,7 @@ use lab::reference;
 use lab::table::{print, sci};
 use std::path::Path;
 use stiffspring::{
-    AndroidDamping, AndroidStiffness, I16F16, I32F32, Oscillator, ReactSpringPreset, RestThreshold,
-    Scalar, SpringValue, SwiftUiPreset,
+    I16F16, I32F32, Motion, Oscillator, RestThreshold, Scalar, SpringValue, presets,
 };
 
 /// A 60 Hz display, a value 100 px from its target.
@@ -21,31 +20,48 @@ struct Case {
 }
 
 fn cases() -> Vec<Case> {
+    use presets::android;
     let mut out = Vec::new();
-    for p in SwiftUiPreset::ALL {
+    for (name, oscillator) in presets::swiftui::ALL {
         out.push(Case {
             platform: "SwiftUI",
-            name: format!("{p:?}"),
-            oscillator: p.oscillator(),
+            name: name.into(),
+            oscillator,
         });
     }
-    for (s, d) in [
-        (AndroidStiffness::Medium, AndroidDamping::MediumBouncy),
-        (AndroidStiffness::Low, AndroidDamping::NoBouncy),
-        (AndroidStiffness::High, AndroidDamping::HighBouncy),
-        (AndroidStiffness::VeryLow, AndroidDamping::LowBouncy),
+    for (name, stiffness, ratio) in [
+        (
+            "medium/mediumBouncy",
+            android::STIFFNESS_MEDIUM,
+            android::DAMPING_RATIO_MEDIUM_BOUNCY,
+        ),
+        (
+            "low/noBouncy",
+            android::STIFFNESS_LOW,
+            android::DAMPING_RATIO_NO_BOUNCY,
+        ),
+        (
+            "high/highBouncy",
+            android::STIFFNESS_HIGH,
+            android::DAMPING_RATIO_HIGH_BOUNCY,
+        ),
+        (
+            "veryLow/lowBouncy",
+            android::STIFFNESS_VERY_LOW,
+            android::DAMPING_RATIO_LOW_BOUNCY,
+        ),
     ] {
         out.push(Case {
             platform: "Android",
-            name: format!("{s:?}/{d:?}"),
-            oscillator: Oscillator::android(s.value(), d.value()).expect("constant preset"),
+            name: name.into(),
+            oscillator: android::spring_force(stiffness, ratio).expect("constant preset"),
         });
     }
-    for p in ReactSpringPreset::ALL {
+    for (name, oscillator) in presets::react_spring::ALL {
         out.push(Case {
             platform: "react-spring",
-            name: format!("{p:?}"),
-            oscillator: p.oscillator(),
+            name: name.into(),
+            oscillator,
         });
     }
     out
@@ -55,15 +71,15 @@ fn cases() -> Vec<Case> {
 /// Returns the positions after each step (until rest or `MAX_STEPS`) and the steps to rest.
 fn release<S: Scalar>(osc: &Oscillator, threshold: RestThreshold) -> (Vec<f64>, Option<usize>) {
     let tuning = osc.tuning(DT).expect("presets are well sampled at 60 Hz");
-    let mut value = SpringValue::<S, 1>::new([S::from_f64(AMPLITUDE)], tuning, DT)
+    let mut value = SpringValue::<S, 1>::new([S::from_f64(AMPLITUDE)], &tuning)
         .expect("valid start")
         .with_rest_threshold(threshold);
-    value.set_target([S::ZERO]).expect("in range");
+    value.set_target([S::ZERO]);
     let mut xs = Vec::new();
     for n in 1..=MAX_STEPS {
-        value.step();
+        let motion = value.step();
         xs.push(value.position()[0].to_f64());
-        if value.is_at_rest() {
+        if motion == Motion::Settled {
             return (xs, Some(n));
         }
     }
@@ -206,7 +222,7 @@ pub fn presets(dir: &Path) {
 
 /// How each backend's error grows over 10 s, for SwiftUI's `.bouncy`.
 fn error_plot(dir: &Path) {
-    let osc = SwiftUiPreset::Bouncy.oscillator();
+    let osc = presets::swiftui::BOUNCY;
     let exact = analytic(&osc, MAX_STEPS);
     let naive = naive_map(&osc, MAX_STEPS);
     let series = |name: &str, xs: &[f64]| {
@@ -237,7 +253,7 @@ fn error_plot(dir: &Path) {
 pub fn fling(dir: &Path) {
     const V0: f64 = 800.0;
     const STEPS: usize = 120;
-    let osc = SwiftUiPreset::Bouncy.oscillator();
+    let osc = presets::swiftui::BOUNCY;
     let tuning = osc.tuning(DT).expect("well sampled");
     let (w, z) = (osc.angular_frequency(), osc.damping_ratio());
     let exact: Vec<f64> = (1..=STEPS)
@@ -245,13 +261,13 @@ pub fn fling(dir: &Path) {
         .collect();
     let amplitude = exact.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     fn flung<S: Scalar>(tuning: stiffspring::Tuning, steps: usize) -> Vec<f64> {
-        let mut v = SpringValue::<S, 1>::new([S::ZERO], tuning, DT)
+        let mut v = SpringValue::<S, 1>::new([S::ZERO], &tuning)
             .expect("valid")
             .with_rest_threshold(RestThreshold::new(1e-300, 1e-300).expect("positive"));
-        v.fling([S::from_f64(V0)]).expect("in range");
+        v.try_fling([S::from_f64(V0)]).expect("in range");
         (0..steps)
             .map(|_| {
-                v.step();
+                v.advance();
                 v.position()[0].to_f64()
             })
             .collect()

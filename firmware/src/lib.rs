@@ -1,6 +1,7 @@
 //! What the examples that run both on the host and on a microcontroller share: the
-//! skeleton below, the [`scenes`] they play and the [`golden`] values they check against.
-//! `no_std`; the library is its only dependency.
+//! skeleton below, the [`scenes`] they play and the [`golden`] values they check against;
+//! and, on the host only, the simulated display the starter examples draw on
+//! (`display`). `no_std`; on the target the library is its only dependency.
 //!
 //! An example is one file with the same scene code for both: a std `main` on the host,
 //! and a `#![no_std]`, `#![no_main]` cortex-m-rt firmware on `thumbv7em-none-eabihf`
@@ -33,6 +34,12 @@
 //! `tests/golden.rs` (as the `value` and `rope` scenes do) and compare with [`Tally`].
 #![no_std]
 
+// The simulated display of the starters records GIFs: host only.
+#[cfg(not(target_os = "none"))]
+extern crate std;
+
+#[cfg(not(target_os = "none"))]
+pub mod display;
 pub mod golden;
 pub mod scenes;
 

@@ -1,10 +1,17 @@
 //! The simulated plant of the knob tests: a rotor of inertia `I` with optional viscous
 //! friction, driven by a zero-order-hold motor torque (with a computational delay of a
 //! fraction of a period) and a hand, integrated exactly over fine sub-steps, read by a
-//! 14-bit encoder. Written here, in `f64`, independently of the library; [`pd`] has the
-//! SmartKnob-style PD detents the knob is compared with.
+//! 14-bit encoder. Written here, in `f64`, independently of the library.
+//!
+//! | module | what it is |
+//! |---|---|
+//! | [`pd`] | SmartKnob-style PD detents, flicked on this rotor against a law the caller sets up |
+//! | [`sweep`] | the sweep of issue 13: a rotor with a delay of whole periods, the oscillation metric, the grids |
+//! | [`linear`] | the loop's state matrix from the rotor's physics, its poles and characteristic polynomial |
 
+pub mod linear;
 pub mod pd;
+pub mod sweep;
 
 use std::f64::consts::TAU;
 

@@ -12,7 +12,9 @@
 //! | [`knob`] | a simulated rotor (exact zero-order hold, encoder) and SmartKnob-style PD detents |
 //! | [`measure`] | interleaved timing of several candidates on a noisy machine |
 //! | [`pareto`] | the 1D value scenes, the peer crates and textbook baselines they are timed against |
+//! | [`xpbd`] | XPBD with small steps, and network models in physical units with their fine-step reference |
 //! | [`plot`] | SVG charts on plotters |
+//! | [`precision`] | the precision study of issue 10: every candidate representation of one spring against the analytic oscillator |
 //! | [`table`] | terminal, Markdown and CSV tables |
 //! | [`golden`] | golden values kept as Rust source: render, compare, regenerate |
 
@@ -23,6 +25,8 @@ pub mod measure;
 pub mod nonlinear;
 pub mod pareto;
 pub mod plot;
+pub mod precision;
 pub mod reference;
 pub mod rng;
 pub mod table;
+pub mod xpbd;

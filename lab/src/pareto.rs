@@ -17,9 +17,7 @@
 //! starts on the analytic trajectory; stiffspring stores `u = x_n − x_{n−1}` and computes
 //! it from the analytic solution at set-up. Rest detection is switched off where an API
 //! allows it (stiffspring: a threshold of 1e−300; animato: `epsilon = 0`), so that every
-//! step of the run is a moving step; the fixed-point backends still stop in their dead
-//! band of `1/C_k` LSB (the library's rounding, see `src/scalar`) and the steps after that
-//! cost only the rest check.
+//! step of the run is a moving step.
 //!
 //! Error: `max |x_n − x(t_n)|` over the run, relative to the amplitude
 //! `max |x(t)|` of the analytic offset from the target (1 from rest; the overshoot of a
@@ -531,5 +529,302 @@ impl<F: Real, const METHOD: u8> Runner for Baseline<F, METHOD> {
     #[inline(always)]
     fn offset(&self) -> f64 {
         self.x.get() - TARGET
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// The batch scene: many values stepped frame by frame
+// ---------------------------------------------------------------------------------------
+
+/// Values in one [`BatchScene`].
+pub const BATCH: usize = 1000;
+
+/// The host scene of the cost targets: [`BATCH`] values of the 1D spring (`f = 2 Hz`), each
+/// released from rest at 0 toward its own target, stepped frame by frame for
+/// [`DURATION`]: every frame steps every value once, then the frame is handed on (the
+/// state goes through `black_box`, as to a renderer), so no frame can be fused with the
+/// next.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BatchScene {
+    /// Damping ratio ζ.
+    pub zeta: f64,
+    /// Frames per second.
+    pub rate: f64,
+}
+
+impl BatchScene {
+    /// Both damping ratios at every rate.
+    pub fn all() -> Vec<BatchScene> {
+        let mut out = Vec::new();
+        for zeta in ZETAS {
+            for rate in RATES {
+                out.push(BatchScene { zeta, rate });
+            }
+        }
+        out
+    }
+
+    /// The scene's name in the CSV: `batch_zeta0.3`, `batch_zeta1`.
+    pub fn name(&self) -> String {
+        format!("batch_zeta{}", self.zeta)
+    }
+
+    /// The time step, in seconds.
+    pub fn dt(&self) -> f64 {
+        1.0 / self.rate
+    }
+
+    /// Frames in one run.
+    pub fn frames(&self) -> usize {
+        (DURATION * self.rate).round() as usize
+    }
+
+    /// Angular natural frequency, rad/s.
+    pub fn omega(&self) -> f64 {
+        std::f64::consts::TAU * FREQUENCY
+    }
+
+    /// The targets of the values: seeded, magnitudes from 1 to 100 (log-uniform), either
+    /// sign. Every value starts at 0, at rest.
+    pub fn targets(&self) -> Vec<f64> {
+        let mut rng = crate::rng::Rng::seeded(12);
+        (0..BATCH)
+            .map(|_| {
+                let m = rng.log_range(1.0, 100.0);
+                if rng.unit() < 0.5 { -m } else { m }
+            })
+            .collect()
+    }
+
+    /// The analytic offset from the target after each frame `n = 1..=frames` of a value
+    /// released from an offset of 1: value `i`'s offset is `−targets[i]` times this.
+    pub fn unit_response(&self) -> Vec<f64> {
+        (1..=self.frames())
+            .map(|n| reference::analytic(1.0, 0.0, self.omega(), self.zeta, n as f64 * self.dt()).0)
+            .collect()
+    }
+
+    /// The exact map's `(C_k, C_d)` at this scene's step, from the reference's poles.
+    pub fn coefficients(&self) -> (f64, f64) {
+        reference::exact_coefficients_from_poles(self.omega(), self.zeta, self.dt())
+    }
+
+    /// The step velocity `u₀ = x(0) − x(−dt)` of a value released from an offset of 1.
+    pub fn unit_u0(&self) -> f64 {
+        reference::u0_from_analytic(1.0, 0.0, self.omega(), self.zeta, self.dt())
+    }
+}
+
+/// One implementation of the batch scene.
+pub trait BatchRunner {
+    /// Back to the scene's start.
+    fn reset(&mut self);
+    /// One frame: every value one step.
+    fn frame(&mut self);
+    /// Value `i`'s offset from its target, `position − target`, in `f64`.
+    fn offset(&self, i: usize) -> f64;
+}
+
+/// The worst error of a batch over one run: `max |x_i − x_i(t)| / |target_i|` over every
+/// value and frame (a NaN counts as infinite).
+pub fn batch_error<R: BatchRunner>(r: &mut R, scene: &BatchScene) -> f64 {
+    let targets = scene.targets();
+    let unit = scene.unit_response();
+    r.reset();
+    let mut worst = 0.0f64;
+    for g in unit {
+        r.frame();
+        for (i, t) in targets.iter().enumerate() {
+            let e = (r.offset(i) + t * g).abs() / t.abs();
+            worst = if e.is_nan() {
+                f64::INFINITY
+            } else {
+                worst.max(e)
+            };
+        }
+    }
+    worst
+}
+
+/// `frames` frames of `r`, each handed on through `black_box`.
+#[inline(always)]
+pub fn run_frames<R: BatchRunner>(r: &mut R, frames: usize) {
+    for _ in 0..frames {
+        r.frame();
+        black_box(&mut *r);
+    }
+}
+
+/// The timing closure of a batch runner: per run, a reset (not timed) and the run's
+/// frames (timed); reported per value step.
+pub fn batch_candidate<R: BatchRunner + 'static>(
+    scene: &BatchScene,
+    mut r: R,
+) -> Candidate<'static> {
+    let frames = scene.frames();
+    Candidate::self_timed(frames, move |runs| {
+        let mut total = std::time::Duration::ZERO;
+        for _ in 0..runs {
+            r.reset();
+            black_box(&mut r);
+            let t = std::time::Instant::now();
+            run_frames(&mut r, frames);
+            total += t.elapsed();
+        }
+        total
+    })
+    .per(BATCH)
+}
+
+/// The instructions of one run of `r` (reset first, not counted), for
+/// [`crate::measure::callgrind`]: runs the frames inside [`crate::measure::counted`].
+pub fn batch_count<R: BatchRunner>(scene: &BatchScene, r: &mut R) {
+    r.reset();
+    black_box(&mut *r);
+    let frames = scene.frames();
+    crate::measure::counted(&mut || run_frames(r, frames));
+}
+
+/// The minimal position-level kernel of issue 12: plain arrays of offsets and step
+/// velocities in `f32`, the coefficients hoisted, `u = r·u − k·x; x += u` with
+/// `r = 1 − C_d`, `k = C_k` (the exact map's), started from the analytic `u₀`. No rest
+/// test, no saturation, no target: the floor of a value step.
+pub struct MinimalBatch {
+    start: (Vec<f32>, Vec<f32>),
+    x: Vec<f32>,
+    u: Vec<f32>,
+    r: f32,
+    k: f32,
+}
+
+impl MinimalBatch {
+    /// The scene's values at their start.
+    pub fn new(scene: &BatchScene) -> Self {
+        let (ck, cd) = scene.coefficients();
+        let u0 = scene.unit_u0();
+        let x: Vec<f32> = scene.targets().iter().map(|t| -t as f32).collect();
+        let u: Vec<f32> = scene.targets().iter().map(|t| (-t * u0) as f32).collect();
+        MinimalBatch {
+            start: (x.clone(), u.clone()),
+            x,
+            u,
+            r: (1.0 - cd) as f32,
+            k: ck as f32,
+        }
+    }
+}
+
+impl BatchRunner for MinimalBatch {
+    fn reset(&mut self) {
+        self.x.copy_from_slice(&self.start.0);
+        self.u.copy_from_slice(&self.start.1);
+    }
+    #[inline(always)]
+    fn frame(&mut self) {
+        let (r, k) = (self.r, self.k);
+        for (x, u) in self.x.iter_mut().zip(self.u.iter_mut()) {
+            *u = r * *u - k * *x;
+            *x += *u;
+        }
+    }
+    fn offset(&self, i: usize) -> f64 {
+        self.x[i] as f64
+    }
+}
+
+/// damped-springs 1.0.0 in `f32`: one `Spring` per value, one `SpringTimeStep` for all.
+pub struct DampedBatch {
+    start: Vec<damped_springs::Spring<f32>>,
+    springs: Vec<damped_springs::Spring<f32>>,
+    step: damped_springs::SpringTimeStep<f32>,
+    targets: Vec<f32>,
+}
+
+impl DampedBatch {
+    /// Bytes of state per value (one `Spring<f32>`).
+    pub const BYTES_PER_VALUE: usize = size_of::<damped_springs::Spring<f32>>();
+
+    /// Every value at 0, at rest, with its target as the equilibrium.
+    pub fn new(scene: &BatchScene) -> Self {
+        let config = damped_springs::SpringConfig::new(scene.omega() as f32, scene.zeta as f32);
+        let targets: Vec<f32> = scene.targets().iter().map(|&t| t as f32).collect();
+        let springs: Vec<_> = targets
+            .iter()
+            .map(|&t| damped_springs::Spring::from_equilibrium(t))
+            .collect();
+        DampedBatch {
+            start: springs.clone(),
+            springs,
+            step: damped_springs::SpringTimeStep::new(config, scene.dt() as f32),
+            targets,
+        }
+    }
+}
+
+impl BatchRunner for DampedBatch {
+    fn reset(&mut self) {
+        self.springs.copy_from_slice(&self.start);
+    }
+    #[inline(always)]
+    fn frame(&mut self) {
+        let step = self.step;
+        for s in self.springs.iter_mut() {
+            s.update(step);
+        }
+    }
+    fn offset(&self, i: usize) -> f64 {
+        self.springs[i].position as f64 - self.targets[i] as f64
+    }
+}
+
+/// animato-spring 1.7.3, semi-implicit Euler (`f32`): one `Spring` per value, each
+/// `update(dt)`, `epsilon = 0` (never settled).
+pub struct AnimatoBatch {
+    start: Vec<animato_spring::Spring>,
+    springs: Vec<animato_spring::Spring>,
+    targets: Vec<f32>,
+    dt: f32,
+}
+
+impl AnimatoBatch {
+    /// Bytes of state per value (one `Spring`).
+    pub const BYTES_PER_VALUE: usize = size_of::<animato_spring::Spring>();
+
+    /// Every value at 0, at rest, springing toward its target.
+    pub fn new(scene: &BatchScene) -> Self {
+        let w = scene.omega();
+        let config = animato_spring::SpringConfig {
+            stiffness: (w * w) as f32,
+            damping: (2.0 * scene.zeta * w) as f32,
+            mass: 1.0,
+            epsilon: 0.0,
+        };
+        let targets: Vec<f32> = scene.targets().iter().map(|&t| t as f32).collect();
+        let springs: Vec<_> = targets
+            .iter()
+            .map(|&t| animato_spring::Spring::from_velocity(0.0, 0.0, t, config.clone()))
+            .collect();
+        AnimatoBatch {
+            start: springs.clone(),
+            springs,
+            targets,
+            dt: scene.dt() as f32,
+        }
+    }
+}
+
+impl BatchRunner for AnimatoBatch {
+    fn reset(&mut self) {
+        self.springs.clone_from(&self.start);
+    }
+    #[inline(always)]
+    fn frame(&mut self) {
+        let dt = self.dt;
+        for s in self.springs.iter_mut() {
+            s.update(dt);
+        }
+    }
+    fn offset(&self, i: usize) -> f64 {
+        self.springs[i].position() as f64 - self.targets[i] as f64
     }
 }

@@ -248,7 +248,7 @@ impl fmt::Display for KnobError {
                 "the peak torque {v} N·m is above the torque limit {l} N·m (by {:.3}×)",
                 v / l
             ),
-            Limit::Capacity => write!(f, "{v} is above the capacity {l}"),
+            Limit::Capacity => write!(f, "{v} magnets, above the capacity {l}"),
             Limit::BackendRange => write!(f, "{v} is beyond what the backend holds, {l}"),
             Limit::NeedsEndstops => write!(f, "a count of {v} detents needs endstops"),
             Limit::CountTorque(zone) => write!(

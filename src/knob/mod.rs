@@ -60,7 +60,8 @@
 //!
 //! # Measured
 //!
-//! **The sweep of issue 13** (`tests/knob_sweep.rs`, an independent ZOH rotor model):
+//! **The sweep of issue 13** (`tests/knob_sweep.rs`, an independent ZOH rotor model in
+//! `lab/src/knob/sweep.rs`; more in `docs/knob.md`):
 //! 1, 4 and 10 kHz; `J` 1e−6, 1e−5, 1e−4 kg·m²; torque limits 0.02 and 0.1 N·m; `ζ` 0.2,
 //! 0.7 and 2; both latencies, the one-step knob also run without delay; detent stiffnesses
 //! 0.01, 0.03, 0.1, 0.3 and 1 of the stiffest accepted; 2, 24 and 100 detents, endless or
@@ -73,7 +74,7 @@
 //!
 //! | sweep | configurations | runs | oscillating | command |
 //! |---|---|---|---|---|
-//! | full | 12,960 | 204,120 | **0** | `cargo test --release --test knob_sweep -- --ignored --nocapture` (about 4 min) |
+//! | full | 12,960 | 204,120 | **0** | `cargo test --release --test knob_sweep -- --ignored --nocapture` (minutes; ignored in a plain `cargo test`) |
 //! | short, `f64`, `f32`, `I16F16` | 256 | 2,688 each | **0** | `cargo test --release --test knob_sweep -- --nocapture` |
 //!
 //! **Against SmartKnob-style PD detents** (`τ = −k_p·e − k_d·ω`, SmartKnob's
@@ -108,7 +109,7 @@
 //! | case | `I16F16` | `I32F32` | `f32` |
 //! |---|---|---|---|
 //! | scripted hand through detents/magnets and endstops, 1–10 kHz | ≤ 5.5e−5 | ≤ 9.1e−10 | ≤ 3.0e−7 |
-//! | endless, 100 detents per turn, 10 kHz, at 1,000 / 10,000 / 32,000 rad | 2.2e−4 / 2.0e−4 / 9.3e−5 | | |
+//! | endless, 100 detents per turn, 10 kHz, at 1,000 / 10,000 / 32,000 rad | 2.2e−4 / 2.1e−4 / 9.5e−5 | | |
 //!
 //! # Cost
 //!

@@ -41,10 +41,6 @@ impl<S: Scalar> LengthKernel<S> for Exact {
     #[inline(always)]
     fn measure<const D: usize>(d: &[S::State; D], rest: &Self::Rest) -> (S::State, [S::Coef; D]) {
         let length = S::norm(d);
-        let mut n = [S::coef(0.0); D];
-        for (n, d) in n.iter_mut().zip(d) {
-            *n = S::ratio(*d, length);
-        }
-        (S::state_sub(length, *rest), n)
+        (S::state_sub(length, *rest), S::axis(d, length))
     }
 }

@@ -325,6 +325,10 @@ macro_rules! fixed_backend {
             fn ratio(a: $State, b: $State) -> Self::Coef {
                 <$Coef>::from_bits(<$State as WideGeometry>::ratio(a, b))
             }
+            #[inline(always)]
+            fn axis<const D: usize>(d: &[$State; D], length: $State) -> [Self::Coef; D] {
+                <$State as WideGeometry>::axis(d, length).map(<$Coef>::from_bits)
+            }
         }
     };
 }
@@ -339,10 +343,30 @@ trait WideGeometry: Sized {
     fn norm<const D: usize>(d: &[Self; D]) -> Self;
     /// `a/b` as a fraction (toward zero, saturating), 0 for `b ≤ 0`.
     fn ratio(a: Self, b: Self) -> Self::Fraction;
+    /// `dᵢ/length` for `|dᵢ| ≤ length`, as fractions; zeros for `length ≤ 0`.
+    fn axis<const D: usize>(d: &[Self; D], length: Self) -> [Self::Fraction; D]
+    where
+        Self: Copy,
+    {
+        d.map(|d| Self::ratio(d, length))
+    }
 }
 
 impl WideGeometry for i64 {
     type Fraction = i32;
+    fn axis<const D: usize>(d: &[i64; D], length: i64) -> [i32; D] {
+        if length <= 0 {
+            return [0; D];
+        }
+        // r = ⌊2^93/length⌋ once; dᵢ·r/2^64 is dᵢ/length in Q3.29, and |dᵢ| ≤ length keeps
+        // the product below 2^93. Truncating r and the product rounds toward −∞ by at most
+        // two Q3.29 last bits, which a unit axis does not notice.
+        let r = (1u128 << 93) / length as u128;
+        d.map(|v| {
+            let q = (v as i128 * r as i128) >> 64;
+            q.clamp(i32::MIN as i128, i32::MAX as i128) as i32
+        })
+    }
     fn square(v: i64) -> i64 {
         // Q24.40: v² has 80 fractional bits; the square of any i64 fits i128.
         let p = (v as i128 * v as i128) >> 40;

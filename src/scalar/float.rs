@@ -222,6 +222,13 @@ macro_rules! float_backend {
                 // Cortex-M4F, which has no `vmax`).
                 if b > 0.0 { a / b } else { 0.0 }
             }
+            #[inline(always)]
+            fn axis<const D: usize>(d: &[Self; D], length: Self) -> [Self; D] {
+                // One division and D products instead of D divisions (a division is 14
+                // cycles on a Cortex-M4F, a product 1).
+                let inverse = if length > 0.0 { 1.0 / length } else { 0.0 };
+                d.map(|d| d * inverse)
+            }
         }
     };
 }

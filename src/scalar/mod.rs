@@ -273,6 +273,13 @@ pub trait Scalar:
     /// `a/b` as a fraction in `[−4, 4)` for `b > 0` (rounded toward zero, saturating);
     /// 0 when `b ≤ 0`: the components of a unit axis.
     fn ratio(a: Self::State, b: Self::State) -> Self::Coef;
+    /// The unit axis `dᵢ/length` of a separation whose length is `length ≥ |dᵢ|` (a zero
+    /// axis for a zero length): one reciprocal and `D` products where the backend can, the
+    /// division `D` times otherwise.
+    #[inline(always)]
+    fn axis<const D: usize>(d: &[Self::State; D], length: Self::State) -> [Self::Coef; D] {
+        d.map(|d| Self::ratio(d, length))
+    }
 }
 
 #[cfg(test)]

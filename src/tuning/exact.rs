@@ -449,6 +449,32 @@ mod tests {
         Ok(())
     }
 
+    /// An undersampled damped spring (a 503 Hz segment of a stiff rope, ζ = 0.07, at
+    /// 60 Hz: `f·dt = 8.4`) is sampled exactly too: `C_k = (1 − z₁)(1 − z₂)` of its poles,
+    /// computed here with libm.
+    #[test]
+    fn undersampled_damped_oscillators_are_sampled_exactly() -> Result<(), Error> {
+        for (k, c, m, dt) in [
+            (1e5, 0.0707, 0.01, 1.0 / 60.0),
+            (1e5, 0.1, 0.005, 1.0 / 240.0),
+            (5e3, 0.1, 0.005, 1.0 / 60.0),
+        ] {
+            let t = Tuning::from_physical(k, c, m, dt)?;
+            let (w, z) = (libm::sqrt(k / m), c / (2.0 * libm::sqrt(k * m)));
+            let a = z * w * dt;
+            let b = w * libm::sqrt(1.0 - z * z) * dt;
+            let s = libm::sin(0.5 * b);
+            let ck = libm::expm1(-a) * libm::expm1(-a) + 4.0 * libm::exp(-a) * s * s;
+            assert!((t.stiffness() - ck).abs() <= 1e-12 * ck, "{k} {c} {m} {dt}");
+            let (p, q) = t.start_weights();
+            let keep = libm::exp(-2.0 * a);
+            let q_libm = keep * libm::exp(a) * libm::sin(b) / (w * libm::sqrt(1.0 - z * z));
+            assert!((q - q_libm).abs() <= 1e-12 * dt, "{k} {c} {m} {dt}: {q}");
+            assert!(p.is_finite());
+        }
+        Ok(())
+    }
+
     #[test]
     fn kept_start_weights_are_the_retention_times_the_start_weights() -> Result<(), Error> {
         for (f, z, dt) in [

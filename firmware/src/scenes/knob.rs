@@ -1,8 +1,9 @@
 //! The `knob` scene: a knob of 20 detents over three quarters of a turn, with endstops,
-//! at 1 kHz. Shared by `examples/knob.rs` (host and firmware) and by `tests/golden.rs`,
-//! which plays its scripted encoder sweep on the `f64` knob and writes
-//! `firmware/src/golden/knob.rs`. Change it, then regenerate the golden values:
-//! `STIFFSPRING_BLESS=1 cargo test --test golden`.
+//! at 1 kHz. Shared by `examples/knob.rs` (host and firmware) and by
+//! `tests/knob_golden.rs`, which plays its scripted encoder sweep on an `f64` model of the
+//! knob's torque law and writes `firmware/src/golden/knob.rs`. Change it (and the model's
+//! constants with it), then regenerate the golden values:
+//! `STIFFSPRING_BLESS=1 cargo test --release --test knob_golden`.
 
 use stiffspring::KnobConfig;
 use stiffspring::knob::Latency;

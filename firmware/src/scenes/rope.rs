@@ -1,5 +1,5 @@
 //! The `rope` scene: a 2D rope of 12 particles, pinned at one end, released horizontally
-//! under gravity at 240 Hz. Shared by `examples/rope.rs` (host and firmware) and the tour.
+//! under gravity at 240 Hz. Shared by `examples/check_rope.rs` (host and firmware) and the tour.
 //!
 //! Units are metres, kilograms and seconds; positions stay within ±2 m, well inside the
 //! `I16F16` range. Every particle carries at most two springs, so the article's limit is

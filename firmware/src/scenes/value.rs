@@ -1,7 +1,7 @@
 //! The `value` scene: UI values springing to their targets at 60 Hz, retargeted
 //! mid-flight and flung, as a script of events.
 //!
-//! Shared, as data only, by `examples/value.rs` (which plays it on the library, on the
+//! Shared, as data only, by `examples/check_value.rs` (which plays it on the library, on the
 //! host and on the microcontrollers) and by `tests/golden.rs` (which plays it on the
 //! analytic solution of the f64 reference model and writes `firmware/src/golden/value.rs`).
 //! Change it, then regenerate the golden values:

@@ -8,8 +8,8 @@
 //! - **PD**, as SmartKnob does: `τ = −k_p·e − k_d·ω`, `ω` the backward difference of the
 //!   encoder angles over `dt`, with SmartKnob's raw ratio `k_d = 0.005 s·k_p`
 //!   (`PID_velocity.P = 4·strength`, `D = 0.02·strength` for detents wider than 8°);
-//! - **knob**: stiffspring's knob, `strength = k_p/k_top`, damping ratio 0.7, set up by
-//!   the caller (this module does not use the library).
+//! - **knob**: stiffspring's knob with detent stiffness `k_p` (N·m/rad), damping ratio
+//!   0.7, set up by the caller (this module does not use the library).
 //!
 //! Matched on perceived strength: the same small-signal stiffness `k_p`, so the same
 //! peak detent torque `k_p·0.55·width`. Each case is a flick of 20 rad/s released on a
