@@ -28,23 +28,19 @@
 //!
 //! - `cargo test --test network_limits` runs the bounded checks (part of `cargo test`).
 //! - `cargo test --test network_limits -- --ignored --nocapture` runs the full sweep
-//!   (ropes of 2 to 64 particles, meshes 3×3 to 10×10, mass ratios, stars; a few
-//!   minutes on two cores) and rewrites the measured table in `STABILITY.md`.
+//!   (ropes of 2 to 64 particles, meshes 3×3 to 10×10, mass ratios, stars; about
+//!   10 to 20 minutes on two cores) and rewrites the measured table in `docs/networks.md`.
 
-use lab::linear::{
-    EDGE_RATIOS, Masses, NEUTRAL, Order, Topology, growth_rate, linear_limit, square_limit,
-};
-use lab::reference::network::Network;
+use lab::linear::{EDGE_RATIOS, Masses, NEUTRAL, Order, Topology, linear_limit, square_limit};
+use lab::nonlinear::{Run, SEEDS, STEPS, Tracker, nonlinear_limit};
 use lab::rng::Rng;
 use stiffspring::Tuning;
 use stiffspring::scene::{LimitPolicy, Scene, SceneConfig, Stepper, network_limit};
 
-/// Steps of every nonlinear run.
-const STEPS: usize = 10_000;
+/// The library scenes' time step (the map depends on the coefficients only).
+const DT: f64 = 0.01;
 /// The two initial deformations.
 const FRACTIONS: [f64; 2] = [0.1, 0.5];
-/// Deformation seeds per nonlinear probe.
-const SEEDS: [u64; 3] = [1, 2, 3];
 /// The top of every search: the single spring's limit on the diagonal, `3·C < 4`.
 const TOP: f64 = 4.0 / 3.0;
 /// The documented margin of the rule (`MARGIN` in `src/scene/limits.rs`).
@@ -81,205 +77,20 @@ fn worst_case(n: usize, order: Order) -> f64 {
 }
 
 // ---------------------------------------------------------------------------
-// Nonlinear runs
+// The library's own scene, run as the reference runs (lab::nonlinear)
 // ---------------------------------------------------------------------------
-
-/// What a run did. `strain` is the largest `|x|/L` over the springs; `ripple` the
-/// largest fourth difference of a spring's strain over five consecutive steps
-/// (`e(t) − 4e(t−1) + 6e(t−2) − 4e(t−3) + e(t−4)`). A motion of frequency `θ` radians per
-/// step and amplitude `a` has a ripple of `(2·sin(θ/2))⁴·a`: `16·a` for the period-2
-/// oscillation of a network past its limit, more than `a/4` for any period below nine
-/// steps, but under `a/100` for smooth physical motion (`θ < 0.3`: a rope still swinging
-/// or whipping on its undamped transverse modes, with the steady strain of its
-/// centrifugal tension; a soft network still settling). A long rope with a 1:100 mass
-/// gradient whipping after a 50 % deformation sits in between (its light end swings at
-/// about ten steps per period, a ripple of 0.05 to 0.2 of its strain).
-#[derive(Clone, Copy, Debug)]
-struct Run {
-    /// Largest ripple over the 1 000 steps before the middle of the run.
-    mid: f64,
-    /// Largest ripple over the last 1 000 steps.
-    end: f64,
-    /// Largest strain over the last 1 000 steps.
-    strain: f64,
-    /// A strain reached 10, or a value was not finite.
-    blew_up: bool,
-}
-
-impl Run {
-    /// Nothing blew up, and at the end there is no sustained motion at the step rate:
-    /// the ripple is at rounding level, or small against the strain, or still falling.
-    fn stable(&self) -> bool {
-        let quiet = self.end <= 1e-9 || self.end <= 0.25 * self.strain;
-        !self.blew_up && (quiet || self.end <= 0.5 * self.mid)
-    }
-}
-
-/// Records the strains of each step into a [`Run`].
-struct Tracker {
-    steps: usize,
-    /// The strains of the last four steps, newest first.
-    history: [Vec<f64>; 4],
-    run: Run,
-}
-
-impl Tracker {
-    fn new(steps: usize, strains: Vec<f64>) -> Self {
-        Tracker {
-            steps,
-            history: [strains.clone(), strains.clone(), strains.clone(), strains],
-            run: Run {
-                mid: 0.0,
-                end: 0.0,
-                strain: 0.0,
-                blew_up: false,
-            },
-        }
-    }
-
-    /// Records step `t`; false once the run blew up.
-    fn record(&mut self, t: usize, strains: Vec<f64>) -> bool {
-        let (mut ripple, mut strain): (f64, f64) = (0.0, 0.0);
-        let [h1, h2, h3, h4] = &self.history;
-        for (i, e) in strains.iter().enumerate() {
-            if e.is_nan() || e.abs() >= 10.0 {
-                self.run.blew_up = true;
-                return false;
-            }
-            let d4 = e - 4.0 * h1[i] + 6.0 * h2[i] - 4.0 * h3[i] + h4[i];
-            ripple = ripple.max(d4.abs());
-            strain = strain.max(e.abs());
-        }
-        self.history.rotate_right(1);
-        self.history[0] = strains;
-        let window = self.steps / 10;
-        let half = self.steps / 2;
-        if t + window >= half && t < half {
-            self.run.mid = self.run.mid.max(ripple);
-        }
-        if t + window >= self.steps {
-            self.run.end = self.run.end.max(ripple);
-            self.run.strain = self.run.strain.max(strain);
-        }
-        true
-    }
-}
-
-fn reference_strains(net: &Network<2>) -> Vec<f64> {
-    let mut strains: Vec<f64> = (0..net.springs.len())
-        .map(|s| net.extension(s) / net.springs[s].rest)
-        .collect();
-    if net
-        .particles
-        .iter()
-        .any(|p| !(p.vel[0].is_finite() && p.vel[1].is_finite()))
-    {
-        strains[0] = f64::INFINITY;
-    }
-    strains
-}
-
-/// The reference network of `top`, deformed, with per-spring coefficients, in the
-/// library's order.
-fn reference_network(
-    top: &Topology,
-    ck: &[f64],
-    cd: &[f64],
-    fraction: f64,
-    seed: u64,
-) -> Network<2> {
-    let mut net = Network::<2>::new();
-    for (i, p) in top.deformed(fraction, seed).into_iter().enumerate() {
-        if top.is_free(i) {
-            net.add_particle(p, [0.0; 2], 1.0 / top.inverse_masses[i]);
-        } else {
-            net.add_pinned(p);
-        }
-    }
-    for s in top.library_order() {
-        let (a, b) = top.springs[s];
-        let d = [
-            top.positions[b][0] - top.positions[a][0],
-            top.positions[b][1] - top.positions[a][1],
-        ];
-        net.add_spring(a, b, d[0].hypot(d[1]), ck[s], cd[s]);
-    }
-    net
-}
-
-fn reference_run(
-    top: &Topology,
-    ck: &[f64],
-    cd: &[f64],
-    order: Order,
-    fraction: f64,
-    seed: u64,
-) -> Run {
-    // Any dt: the map depends on the coefficients only.
-    let dt = 0.01;
-    let mut net = reference_network(top, ck, cd, fraction, seed);
-    let mut tracker = Tracker::new(STEPS, reference_strains(&net));
-    for t in 0..STEPS {
-        match order {
-            Order::GaussSeidel => net.step_gauss_seidel(dt),
-            Order::Jacobi => net.step_jacobi(dt),
-        }
-        if !tracker.record(t, reference_strains(&net)) {
-            break;
-        }
-    }
-    tracker.run
-}
-
-/// Stable from every seed at `(c, c)` on every spring.
-fn nonlinear_stable(top: &Topology, order: Order, fraction: f64, c: f64) -> bool {
-    let m = top.springs.len();
-    let (ck, cd) = (vec![c; m], vec![c; m]);
-    SEEDS
-        .iter()
-        .all(|&seed| reference_run(top, &ck, &cd, order, fraction, seed).stable())
-}
-
-/// The largest `C ≤ TOP` stable from `fraction` deformation, to `tol`: bisection, then
-/// a check of `½`, `¾` and `0.9` of the result; if one of those is unstable (stability
-/// need not be monotone in `C` far from the rest state), the search repeats below it.
-fn nonlinear_limit(top: &Topology, order: Order, fraction: f64, tol: f64) -> f64 {
-    let mut hi = TOP;
-    if nonlinear_stable(top, order, fraction, hi) {
-        return hi;
-    }
-    loop {
-        let mut lo = 0.0;
-        while hi - lo > tol {
-            let mid = 0.5 * (lo + hi);
-            if nonlinear_stable(top, order, fraction, mid) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        match [0.9, 0.75, 0.5]
-            .iter()
-            .map(|f| f * lo)
-            .find(|&c| c > tol && !nonlinear_stable(top, order, fraction, c))
-        {
-            Some(c) => hi = c,
-            None => return lo,
-        }
-    }
-}
 
 type LibraryScene = Scene<f64, 2, 128, 512>;
 
 /// The library's scene of `top` with every spring added rigid under
 /// [`LimitPolicy::Clamp`]: each ends at its own limit.
 fn library_scene(top: &Topology, order: Order) -> LibraryScene {
-    let config = SceneConfig::new(0.01)
+    let config = SceneConfig::new(DT)
         .unwrap()
         .stepper(stepper(order))
         .limit_policy(LimitPolicy::Clamp)
         .no_sleep();
-    let mut scene = LibraryScene::new(config).unwrap();
+    let mut scene = LibraryScene::new(config);
     let ids: Vec<_> = top
         .positions
         .iter()
@@ -292,10 +103,9 @@ fn library_scene(top: &Topology, order: Order) -> LibraryScene {
             }
         })
         .collect();
+    let rigid = Tuning::rigid(DT).unwrap();
     for &(a, b) in &top.springs {
-        scene
-            .add_spring_at_rest(ids[a], ids[b], Tuning::rigid())
-            .unwrap();
+        scene.add_spring_at_rest(ids[a], ids[b], &rigid).unwrap();
     }
     scene
 }
@@ -322,7 +132,7 @@ fn library_run(top: &Topology, order: Order, fraction: f64, seed: u64) -> Run {
     }
     let mut tracker = Tracker::new(STEPS, library_strains(&scene));
     for t in 0..STEPS {
-        scene.step();
+        let _ = scene.step();
         if !tracker.record(t, library_strains(&scene)) {
             break;
         }
@@ -342,7 +152,7 @@ fn worst_growth_at(top: &Topology, order: Order, limits: &[f64]) -> f64 {
         for (a, b) in [(1.0, r), (r, 1.0)] {
             let ck: Vec<f64> = limits.iter().map(|l| a * l).collect();
             let cd: Vec<f64> = limits.iter().map(|l| b * l).collect();
-            worst = worst.max(growth_rate(&top.step_matrix(&ck, &cd, order)));
+            worst = worst.max(top.growth_rate(&ck, &cd, order));
         }
     }
     worst
@@ -354,7 +164,7 @@ fn mixed_star_growth(n: usize, m: usize, l: f64, order: Order) -> f64 {
     let top = Topology::collinear_star(n);
     let ck = vec![l; n];
     let cd: Vec<f64> = (0..n).map(|k| if k < m { l } else { 0.0 }).collect();
-    growth_rate(&top.step_matrix(&ck, &cd, order))
+    top.growth_rate(&ck, &cd, order)
 }
 
 // ---------------------------------------------------------------------------
@@ -493,12 +303,12 @@ fn library_scenes_at_their_limits_come_to_rest() {
 fn floppy_meshes_are_less_stable_than_their_linearisation() {
     let top = Topology::mesh(4, 4, false, false);
     let linear = linear_limit(&top, Order::Jacobi, TOP, 1e-4);
-    let nonlinear = nonlinear_limit(&top, Order::Jacobi, 0.1, 5e-3);
+    let nonlinear = nonlinear_limit(&top, Order::Jacobi, 0.1, 5e-3, TOP);
     assert!(nonlinear < 0.8 * linear, "{nonlinear} vs {linear}");
     assert!(nonlinear > network_limit(4, Stepper::Jacobi));
     let braced = Topology::mesh(3, 3, true, false);
     let linear = linear_limit(&braced, Order::Jacobi, TOP, 1e-4);
-    let nonlinear = nonlinear_limit(&braced, Order::Jacobi, 0.5, 5e-3);
+    let nonlinear = nonlinear_limit(&braced, Order::Jacobi, 0.5, 5e-3, TOP);
     assert!(nonlinear > 0.95 * linear, "{nonlinear} vs {linear}");
 }
 
@@ -513,7 +323,7 @@ fn jacobi_rule_holds_on_random_networks() {
         let limits = library_limits(&top, Order::Jacobi);
         for _ in 0..4 {
             let (ck, cd) = random_coefficients(&mut rng, &limits);
-            let g = growth_rate(&top.step_matrix(&ck, &cd, Order::Jacobi));
+            let g = top.growth_rate(&ck, &cd, Order::Jacobi);
             assert!(g <= NEUTRAL, "{top:?} {ck:?} {cd:?}: {g}");
         }
     }
@@ -548,12 +358,12 @@ fn random_coefficients(rng: &mut Rng, limits: &[f64]) -> (Vec<f64>, Vec<f64>) {
 fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
     let mut rng = Rng::seeded(7);
     let (mut mixed, mut mixed_worst, mut uniform, mut uniform_worst) = (0, 0.0f64, 0, 0.0f64);
-    let trials = 300;
+    let trials = 3000;
     for _ in 0..trials {
         let top = Topology::random(&mut rng, 1e6);
         let limits = library_limits(&top, Order::GaussSeidel);
         let (ck, cd) = random_coefficients(&mut rng, &limits);
-        let g = growth_rate(&top.step_matrix(&ck, &cd, Order::GaussSeidel));
+        let g = top.growth_rate(&ck, &cd, Order::GaussSeidel);
         if g > NEUTRAL {
             mixed += 1;
             mixed_worst = mixed_worst.max(g);
@@ -571,7 +381,7 @@ fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
         } else {
             (vec![r * l; m], vec![l; m])
         };
-        let g = growth_rate(&top.step_matrix(&ck, &cd, Order::GaussSeidel));
+        let g = top.growth_rate(&ck, &cd, Order::GaussSeidel);
         if g > NEUTRAL {
             uniform += 1;
             uniform_worst = uniform_worst.max(g);
@@ -582,9 +392,15 @@ fn gauss_seidel_flutter_is_rare_slow_and_needs_mixed_damping_or_mass_ratios() {
          mixed coefficients, masses to 1e6: {mixed} flutter (worst growth {mixed_worst:.1e}/step); \
          one tuning, masses to 100: {uniform} flutter (worst {uniform_worst:.1e}/step)"
     );
+    // Measured: 7 of 3000 flutter with mixed coefficients (worst 1.1e−2 per step), none
+    // with one tuning. It exists (no share-count rule removes it), and it is rare and slow.
     assert_eq!(uniform, 0);
+    assert!(
+        mixed > 0,
+        "no flutter found: the claim needs another sample"
+    );
     assert!(mixed_worst < 0.02, "{mixed_worst}");
-    assert!(mixed * 20 < trials, "{mixed} of {trials}");
+    assert!(mixed * 100 < trials, "{mixed} of {trials}");
 }
 
 // ---------------------------------------------------------------------------
@@ -623,7 +439,7 @@ fn measure(top: &Topology, order: Order) -> Row {
         library,
         diagonal: linear_limit(top, order, TOP, 1e-4),
         square: square_limit(top, order, TOP, 1e-3),
-        nonlinear: FRACTIONS.map(|f| nonlinear_limit(top, order, f, 2e-3)),
+        nonlinear: FRACTIONS.map(|f| nonlinear_limit(top, order, f, 2e-3, TOP)),
         library_rests,
     }
 }
@@ -728,7 +544,7 @@ const END: &str = "<!-- network_limits: end -->";
 
 #[test]
 #[ignore = "the full sweep: minutes; `cargo test --test network_limits -- --ignored --nocapture`"]
-fn full_sweep_writes_the_table_of_stability_md() {
+fn full_sweep_writes_the_table_of_the_networks_doc() {
     let tops = sweep_topologies();
     let rows = measure_all(&tops);
     let table = table(&rows);
@@ -744,7 +560,7 @@ fn full_sweep_writes_the_table_of_stability_md() {
         });
         println!("{}: measured/library from {lo:.2} to {hi:.2}", name(order));
     }
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("STABILITY.md");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/networks.md");
     if let Ok(text) = std::fs::read_to_string(&path)
         && let (Some(b), Some(e)) = (text.find(BEGIN), text.find(END))
     {

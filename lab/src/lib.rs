@@ -7,6 +7,7 @@
 //! |---|---|
 //! | [`reference`](mod@reference) | the independent f64 models of the seed article's springs and networks, written from its equations |
 //! | [`linear`] | the linearised step matrix of a network and its eigenvalues (nalgebra) |
+//! | [`nonlinear`] | nonlinear stability runs of a network on the reference model |
 //! | [`rng`] | a seeded, portable random generator (rand's xoshiro256++) for reproducible inputs |
 //! | [`knob`] | a simulated rotor (exact zero-order hold, encoder) and SmartKnob-style PD detents |
 //! | [`measure`] | interleaved timing of several candidates on a noisy machine |
@@ -21,6 +22,7 @@ pub mod golden;
 pub mod knob;
 pub mod linear;
 pub mod measure;
+pub mod nonlinear;
 pub mod pareto;
 pub mod plot;
 pub mod precision;

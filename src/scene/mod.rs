@@ -303,9 +303,11 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     }
 
     /// A particle's position as the scene holds it, in `f64`: in `f32` the position plus
-    /// the rounding remainder the scene carries beside it (see [`Scalar::Remainder`]),
-    /// elsewhere exactly [`Scene::position`]. For measurements far from the origin (the
-    /// energy of a drifting network), not for drawing.
+    /// the rounding remainder the scene carries beside it (see [`Scalar::Remainder`]); in
+    /// fixed point the wide state, with its guard bits below a position's last bit (exact
+    /// for `I16F16`'s Q24.40 within ±2¹³ units, to 53 bits for `I32F32`'s Q64.64); in
+    /// `f64` exactly [`Scene::position`]. For measurements (the energy of a drifting
+    /// network, a comparison with a reference model), not for drawing.
     ///
     /// # Errors
     ///
