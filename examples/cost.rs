@@ -591,10 +591,23 @@ fn measure_hardware() -> bool {
         "distance_2d/hardware_sqrt",
         "f32",
         distance_2d::<f32, stiffspring::length::HardwareSqrt>,
-    ) & report("floor_rope/hardware_sqrt", "f32", floor_rope::<false, false>)
-        & report("floor_rope_guard/hardware_sqrt", "f32", floor_rope::<true, false>)
-        & report("floor_rope_carry/hardware_sqrt", "f32", floor_rope::<false, true>)
-        & report("floor_rope_guard_carry/hardware_sqrt", "f32", floor_rope::<true, true>)
+    ) & report(
+        "floor_rope/hardware_sqrt",
+        "f32",
+        floor_rope::<false, false>,
+    ) & report(
+        "floor_rope_guard/hardware_sqrt",
+        "f32",
+        floor_rope::<true, false>,
+    ) & report(
+        "floor_rope_carry/hardware_sqrt",
+        "f32",
+        floor_rope::<false, true>,
+    ) & report(
+        "floor_rope_guard_carry/hardware_sqrt",
+        "f32",
+        floor_rope::<true, true>,
+    )
 }
 #[cfg(not(target_abi = "eabihf"))]
 fn measure_hardware() -> bool {

@@ -131,8 +131,8 @@ impl<S: Scalar> Start<S> {
 }
 
 /// `state` if `|state| ≤ limit` (`limit_f64` in `f64`), else the error that names
-/// `parameter`, the value and the limit, and says what would hold it: a larger unit in
-/// fixed point, a wider backend in floats.
+/// `parameter`, the value and the limit, and says what would hold it: a larger unit, which
+/// holds the same motion in fewer units in every backend.
 pub(crate) fn bounded<S: Scalar>(
     state: S::State,
     limit: S::State,
@@ -147,11 +147,7 @@ pub(crate) fn bounded<S: Scalar>(
             backend: S::NAME,
             value: S::state_to_f64(state),
             limit: limit_f64,
-            remedy: if S::RESOLUTION > 0.0 {
-                Remedy::LargerUnit
-            } else {
-                Remedy::WiderBackend
-            },
+            remedy: Remedy::LargerUnit,
         })
     }
 }

@@ -44,7 +44,10 @@ fn integrate<S: Scalar, const D: usize>(
         let mut total = S::STATE_ZERO;
         for k in 0..D {
             (next[k], rest[k]) = S::add_carrying(x[k], r[k], u[k]);
-            total = S::state_add(total, S::state_add(S::state_abs(u[k]), S::state_abs(next[k])));
+            total = S::state_add(
+                total,
+                S::state_add(S::state_abs(u[k]), S::state_abs(next[k])),
+            );
         }
         if S::within(total, bound) {
             *x = next;
