@@ -256,7 +256,7 @@ mod tests {
         for i in 0..400_000u32 {
             let gain = |next: &mut dyn FnMut() -> u64| {
                 let r = next();
-                if r % 9 == 0 {
+                if r.is_multiple_of(9) {
                     (0, 0)
                 } else {
                     (
@@ -329,7 +329,7 @@ mod tests {
         for i in 0..200_000u32 {
             let gain = |next: &mut dyn FnMut() -> u64| {
                 let r = next();
-                if r % 9 == 0 {
+                if r.is_multiple_of(9) {
                     (0i64, 0)
                 } else {
                     (
