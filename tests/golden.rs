@@ -1,6 +1,6 @@
 //! The golden values the firmware examples check themselves against.
 //!
-//! Each dual-target example (`examples/value.rs`, …) plays a scene (`firmware/src/scenes/`)
+//! Each firmware check (`examples/check_value.rs`, `examples/check_rope.rs`) plays a scene (`firmware/src/scenes/`)
 //! on the library and compares every sample with golden values computed here, on the
 //! host, from the independent f64 reference model (`lab::reference`): for a tuning from
 //! the exact map, the analytic solution of the continuous oscillator, which the library

@@ -199,9 +199,25 @@ impl Repo {
                 if !found.is_empty() || !parts.contains(&"src") {
                     targets.entry(target.clone()).or_default().insert(p.clone());
                 }
+                // A unit test's name, as libtest filters it, starts with its module's path
+                // (`src/math.rs` → `math::…`); an integration test's with its function.
+                let module = match parts.iter().position(|part| *part == "src") {
+                    Some(at) if target == "lib" => parts[at + 1..]
+                        .join("::")
+                        .trim_end_matches(".rs")
+                        .trim_end_matches("mod")
+                        .trim_end_matches("lib")
+                        .trim_end_matches("::")
+                        .to_string(),
+                    _ => String::new(),
+                };
                 tests.extend(found.into_iter().map(|(name, ignored)| TestFn {
                     target: target.clone(),
-                    name,
+                    name: if module.is_empty() {
+                        name
+                    } else {
+                        format!("{module}::{name}")
+                    },
                     ignored,
                 }));
             }
@@ -287,8 +303,16 @@ impl Repo {
                     }
                 }
                 for (name, explicit) in cited_tests(line) {
-                    let found: Vec<&TestFn> =
-                        self.tests.iter().filter(|t| t.name == name).collect();
+                    let found: Vec<&TestFn> = self
+                        .tests
+                        .iter()
+                        .filter(|t| {
+                            t.name == name
+                                || t.name
+                                    .strip_suffix(name.as_str())
+                                    .is_some_and(|m| m.ends_with("::"))
+                        })
+                        .collect();
                     if found.is_empty() {
                         if explicit {
                             counts.tests += 1;
