@@ -101,13 +101,24 @@ fn max_position<S: Scalar>() -> S {
 }
 
 /// `value` as a position, or why not: not finite, or beyond [`Scalar::MAX`].
+pub(crate) fn check_position<S: Scalar>(value: S, parameter: Parameter) -> Result<S, Error> {
+    // Fixed point always passes: its range is the bound.
+    check_magnitude(value, S::MAX, parameter)
+}
+
+/// `value` if `|value| ≤ max`, or why not: not finite, or beyond `max`.
 ///
 /// The test runs in the backend's own arithmetic (an `f32` firmware links no `f64`
-/// comparison for it); only the error is built in `f64`.
-pub(crate) fn check_position<S: Scalar>(value: S, parameter: Parameter) -> Result<S, Error> {
-    // NaN compares false, ±∞ is above the bound; fixed point always passes (its range
-    // is the bound).
-    if value.abs() <= max_position::<S>() {
+/// comparison for it: `S::from_f64` of a constant folds); only the error is built in
+/// `f64`.
+#[inline(always)]
+pub(crate) fn check_magnitude<S: Scalar>(
+    value: S,
+    max: f64,
+    parameter: Parameter,
+) -> Result<S, Error> {
+    // NaN compares false, ±∞ is above the bound.
+    if value.abs() <= S::from_f64(max) {
         return Ok(value);
     }
     let v = value.to_f64();
@@ -117,7 +128,7 @@ pub(crate) fn check_position<S: Scalar>(value: S, parameter: Parameter) -> Resul
         Error::OutOfRange {
             parameter,
             value: v,
-            bound: Bound::MagnitudeAtMost { max: S::MAX },
+            bound: Bound::MagnitudeAtMost { max },
         }
     })
 }
