@@ -65,6 +65,7 @@
 
 mod batch;
 mod error;
+mod input;
 pub mod kernel;
 pub mod knob;
 pub mod length;

@@ -7,11 +7,11 @@
 //! list of their slots, so settled values cost nothing.
 
 use crate::error::{Error, Parameter};
+use crate::input::{check_position, gains_of};
 use crate::rest::{RestBand, RestThreshold};
 use crate::scalar::Scalar;
 use crate::start::Start;
 use crate::tuning::Tuning;
-use crate::value::{check_position, gains_of};
 use heapless::Vec;
 
 mod index;

@@ -2,8 +2,8 @@
 
 use super::{BatchIndex, SpringBatch};
 use crate::error::{Error, Parameter};
+use crate::input::{check_position, saturate};
 use crate::scalar::Scalar;
-use crate::value::{check_position, saturate};
 
 impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// Moves a value's target; see [`SpringValue::set_target`](crate::SpringValue::set_target).

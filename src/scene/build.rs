@@ -5,11 +5,11 @@
 use super::limits::Change;
 use super::{Added, Island, Kind, Particle, ParticleId, Scene, Spring, SpringId};
 use crate::error::{Bound, Error, Parameter};
+use crate::input::gains_of;
 use crate::kernel::BodyWeights;
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
-use crate::value::gains_of;
 
 /// A spring's validated set-up data, before it is placed.
 struct NewSpring<S: Scalar, L: LengthKernel<S>> {
@@ -576,7 +576,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
 /// beyond it would be moved there by its first step).
 pub(crate) fn check_network<S: Scalar>(value: S, parameter: Parameter) -> Result<S, Error> {
     // Fixed point always passes: its range is within the bound.
-    crate::value::check_magnitude(value, S::NETWORK_MAX, parameter)
+    crate::input::check_magnitude(value, S::NETWORK_MAX, parameter)
 }
 
 fn inverse_mass<S: Scalar>(mass: S) -> Result<f64, Error> {

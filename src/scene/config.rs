@@ -1,8 +1,8 @@
 //! How a scene is set up: time step, gravity, stepper, limit policy, sleeping.
 
 use crate::error::{Error, Parameter, positive, tri};
+use crate::input::check_position;
 use crate::scalar::Scalar;
-use crate::value::check_position;
 
 /// The order in which a scene applies its springs; see the [scene docs](super).
 ///

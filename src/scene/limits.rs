@@ -4,10 +4,10 @@
 use super::config::{LimitPolicy, Stepper};
 use super::{Kind, Scene};
 use crate::error::Error;
+use crate::input::gains_of;
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
-use crate::value::gains_of;
 use heapless::Vec;
 
 /// The fraction of the worst-case limit the scene accepts (see [`network_limit`]).

@@ -4,9 +4,9 @@
 use super::build::check_network;
 use super::{Kind, ParticleId, Scene};
 use crate::error::{Bound, Error, Parameter};
+use crate::input::check_position;
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
-use crate::value::check_position;
 
 impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<S>>
     Scene<S, D, P, K, L>
