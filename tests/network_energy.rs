@@ -13,8 +13,10 @@
 //! invariant, and undamped Gauss-Seidel is the same map (each impulse `−C_k·x` depends on
 //! positions only). The naive `½·C_k·m_red·x²` swings by `±C_k/2` within every period and
 //! hides a drift. For the nonlinear (rotating, crumpling) rope the staggered form is
-//! first-order: in `f64` it stays within ±0.1 % at `C_k = 0.01` and ±1.2 % at `0.1`, so
-//! the targets are checked there.
+//! first-order: in `f64` it stays within ±0.1 % at `C_k = 0.01` and wanders by ±1 % at
+//! `0.1`. So each backend's band along the run is checked against the `f64` run's band,
+//! widened by the target (what rounding adds), and the end value against the target
+//! where the measure is exact (`C_k = 0.01`).
 //!
 //! What keeps it: the undamped integer step is a bijection (the kick depends on positions
 //! only, and the state is wide enough that its rounding noise stays far below the
@@ -90,8 +92,16 @@ fn shadow_energy<S: Scalar>(
     energy
 }
 
-/// `H/H₀` at the end of the run.
-fn run<S: Scalar>(case: &Case) -> f64 {
+/// `H/H₀` along the run: at its end, and the least and the largest of the samples taken
+/// every 997 steps (a period prime to the rope's, so that the samples fall on every phase).
+#[derive(Clone, Copy, Debug)]
+struct Band {
+    end: f64,
+    least: f64,
+    largest: f64,
+}
+
+fn run<S: Scalar>(case: &Case) -> Band {
     let config = SceneConfig::new(case.dt)
         .expect("a positive dt")
         .stepper(case.stepper)
@@ -130,13 +140,25 @@ fn run<S: Scalar>(case: &Case) -> f64 {
             .expect("a free particle");
     }
     let h0 = shadow_energy(&scene, &ids, case);
-    for _ in 0..case.steps {
+    let mut band = Band {
+        end: 1.0,
+        least: 1.0,
+        largest: 1.0,
+    };
+    for n in 1..=case.steps {
         let _ = scene.step();
+        if n % 997 == 0 || n == case.steps {
+            let h = shadow_energy(&scene, &ids, case) / h0;
+            band.least = band.least.min(h);
+            band.largest = band.largest.max(h);
+            band.end = h;
+        }
     }
-    shadow_energy(&scene, &ids, case) / h0
+    band
 }
 
 fn check(steps: usize) {
+    let mut failures = Vec::new();
     for start in [Start::Still(0.5), Start::Moving(0.5, 1.0)] {
         for rate in [60.0, 1000.0] {
             for ck in [0.01, 0.1] {
@@ -148,20 +170,38 @@ fn check(steps: usize) {
                         start,
                         steps,
                     };
-                    for (name, h, allowed) in [
+                    let exact = run::<f64>(&case);
+                    println!(
+                        "{:<7} {stepper:<11?} {rate:>5} Hz C_k {ck:<5} {start:?}: H/H₀ = {:.5} (band {:.5} to {:.5})",
+                        "f64", exact.end, exact.least, exact.largest
+                    );
+                    for (name, band, allowed) in [
                         ("f32", run::<f32>(&case), 0.01),
                         ("I32F32", run::<I32F32>(&case), 0.01),
                         ("I16F16", run::<I16F16>(&case), 0.05),
                     ] {
                         println!(
-                            "{name:<7} {stepper:<11?} {rate:>5} Hz C_k {ck:<5} {start:?}: H/H₀ = {h:.5}"
+                            "{name:<7} {stepper:<11?} {rate:>5} Hz C_k {ck:<5} {start:?}: H/H₀ = {:.5} (band {:.5} to {:.5})",
+                            band.end, band.least, band.largest
                         );
-                        assert!((h - 1.0).abs() <= allowed, "{name} {case:?}: H/H₀ = {h}");
+                        // Rounding must not heat or cool the rope beyond what the scheme
+                        // does in f64: the backend's band lies within the f64 run's,
+                        // widened by the target. Where the measure is exact to 0.1 % in
+                        // f64 (C_k = 0.01, see the module docs) the end value must also
+                        // lie within the target of 1.
+                        let beyond = band.least < exact.least - allowed
+                            || band.largest > exact.largest + allowed
+                            || (ck == 0.01 && (band.end - 1.0).abs() > allowed);
+                        if beyond {
+                            failures
+                                .push(format!("{name} {case:?}: {band:?} against f64 {exact:?}"));
+                        }
                     }
                 }
             }
         }
     }
+    assert!(failures.is_empty(), "{failures:#?}");
 }
 
 #[test]
