@@ -8,7 +8,8 @@
 //! (see `Scalar`); the state keeps 24 (`I16F16`) or 32 (`I32F32`) bits below a position's
 //! last bit, so the dead band `|x| < 1/C_k` state LSB is below a position's LSB.
 //!
-//! `cargo test --release --test fixed_point_rest -- --nocapture` prints the slowest case.
+//! `cargo test --release --test fixed_point_rest -- --nocapture` prints the slowest case
+//! and how long a unit move at 1, 5 and 10 kHz takes to settle.
 
 use stiffspring::{I16F16, I32F32, Motion, RestThreshold, Scalar, SpringValue, Tuning};
 
@@ -105,6 +106,7 @@ fn a_unit_move_at_10_khz_animates() {
         // ζ = 0.3 at 2 Hz decays by e^{−ζωt}: below the default threshold (7.5e−4) after
         // about 1.7 s.
         let seconds = steps as f64 * dt;
+        println!("I16F16, a unit move at {rate} Hz (2 Hz, ζ 0.3): settled after {seconds} s");
         assert!(
             seconds > 1.0 && seconds < 3.0,
             "{rate} Hz: settled after {seconds} s"
