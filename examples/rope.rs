@@ -2,6 +2,9 @@
 //! handle (a zero-length spring to a pinned point that follows the pointer), then let go.
 //! `cargo run --example rope` draws it on a simulated display and writes
 //! `target/tour/rope.gif`.
+//!
+//! On a chip without an FPU, make it `Scene::<I16F16, 2, 13, 12>` and write the numbers as
+//! `I16F16` (`I16F16::from_num(0.02)`); `examples/check_rope.rs` runs the same kind of rope in both.
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle};

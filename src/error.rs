@@ -206,16 +206,6 @@ pub enum Error {
         /// The range it must lie in.
         bound: Bound,
     },
-    /// Several arguments that act together add up to more than their limit (a knob's
-    /// strengths, for example). `parameter` is the kind of the terms.
-    SumTooLarge {
-        /// Which kind of argument.
-        parameter: Parameter,
-        /// The sum of the terms.
-        sum: f64,
-        /// The largest sum accepted.
-        limit: f64,
-    },
     /// The backend cannot hold the value at its resolution or in its range: a
     /// coefficient below its resolution, or a start velocity beyond its range. Nothing
     /// was changed; `remedy` says what would work.
@@ -237,13 +227,18 @@ pub enum Error {
         /// The container's capacity.
         capacity: usize,
     },
-    /// An id or index that names nothing live: removed, or from another container.
+    /// An id or index that names nothing live: removed, or naming a slot the container
+    /// does not hold. (Ids carry a slot and its generation, not their container: an id of
+    /// another container whose slot and generation are live here is not detected.)
     Stale {
         /// [`Parameter::Particle`], [`Parameter::Spring`] or [`Parameter::Index`].
         parameter: Parameter,
     },
     /// A spring from a particle to itself.
     SameParticle,
+    /// A knob given a number of detents and no endstops to spread them over: give
+    /// endstops, or a detent width instead of a count.
+    NeedsEndstops,
     /// The operation needs a free particle and the particle is pinned (giving a pinned
     /// particle a velocity or an impulse).
     Pinned,
@@ -293,11 +288,11 @@ impl Error {
         match *self {
             Error::NotFinite { parameter }
             | Error::OutOfRange { parameter, .. }
-            | Error::SumTooLarge { parameter, .. }
             | Error::Unrepresentable { parameter, .. }
             | Error::Stale { parameter } => Some(parameter),
             Error::Aliased { .. } => Some(Parameter::Frequency),
             Error::TimeStepMismatch { .. } => Some(Parameter::TimeStep),
+            Error::NeedsEndstops => Some(Parameter::DetentWidth),
             _ => None,
         }
     }
@@ -337,14 +332,6 @@ impl fmt::Display for Error {
                 value,
                 bound,
             } => write!(f, "{parameter:?} = {value} is outside {bound}"),
-            Error::SumTooLarge {
-                parameter,
-                sum,
-                limit,
-            } => write!(
-                f,
-                "the {parameter:?} terms that act together sum to {sum}, above {limit}"
-            ),
             Error::Unrepresentable {
                 parameter,
                 backend,
@@ -358,6 +345,9 @@ impl fmt::Display for Error {
             Error::CapacityFull { capacity } => write!(f, "capacity {capacity} is full"),
             Error::Stale { parameter } => write!(f, "the {parameter:?} id names nothing live"),
             Error::SameParticle => f.write_str("a spring needs two different particles"),
+            Error::NeedsEndstops => f.write_str(
+                "a count of detents needs endstops to spread over: give endstops, or a detent width",
+            ),
             Error::Pinned => f.write_str("the particle is pinned"),
             Error::ExceedsNetworkLimit { coefficient, limit } => write!(
                 f,

@@ -48,7 +48,6 @@
 //!
 //! | feature | default | what it adds |
 //! |---|---|---|
-//! | `libm` | yes | the inverse map [`Tuning::equivalent_oscillator`]; exact roots for length kernels |
 //! | `fixed` | no | the `I16F16` and `I32F32` backends |
 //! | `micromath` | no | fast approximate roots for the length kernels |
 //! | `hw-sqrt` | no | the `vsqrt.f32` length kernel on Cortex-M4F/M7/M33 (its module is the crate's only `unsafe`) |

@@ -343,6 +343,13 @@ fn knob_refuses<S: Scalar>(
     let kind_agrees = match bound {
         Limit::Finite => e.error == not_finite(parameter),
         Limit::Capacity => matches!(e.error, Error::CapacityFull { .. }),
+        Limit::NeedsEndstops => e.error == Error::NeedsEndstops,
+        // One count's torque: the crate-wide error names the encoder resolution, below
+        // the resolution that would pass.
+        Limit::CountTorque(_) => matches!(
+            e.error,
+            Error::OutOfRange { value: v, bound, .. } if !bound.contains(v)
+        ),
         _ => matches!(e.error, Error::OutOfRange { value: v, .. } if v == e.value),
     };
     assert!(kind_agrees, "{e:?}");
@@ -356,14 +363,14 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
     // The loop, the rotor, the motor, the encoder.
     k(
         KnobConfig::new(NAN, 1e-5, 0.05, 16_384),
-        P::TimeStep,
+        P::LoopRate,
         Limit::Finite,
         NAN,
         NAN,
     );
     k(
         KnobConfig::new(0.0, 1e-5, 0.05, 16_384),
-        P::TimeStep,
+        P::LoopRate,
         Limit::Positive,
         0.0,
         0.0,

@@ -5,7 +5,7 @@
 
 use lab::rng::Rng;
 use stiffspring::knob::{KnobError, Latency, Limit, Zone};
-use stiffspring::{Error, I16F16, I32F32, Knob, KnobConfig, Parameter, Scalar};
+use stiffspring::{Bound, Error, I16F16, I32F32, Knob, KnobConfig, Parameter, Scalar};
 
 const NAN: f64 = f64::NAN;
 const INF: f64 = f64::INFINITY;
@@ -34,6 +34,9 @@ fn check(e: KnobError, parameter: Parameter, limit: Limit, value: f64) {
         (Limit::Capacity, Error::CapacityFull { capacity }) => {
             assert_eq!(capacity as f64, e.limit, "{e:?}");
         }
+        (Limit::NeedsEndstops, Error::NeedsEndstops) => {
+            assert_eq!(e.error.parameter(), Some(parameter), "{e:?}");
+        }
         (
             _,
             Error::OutOfRange {
@@ -52,6 +55,7 @@ fn check(e: KnobError, parameter: Parameter, limit: Limit, value: f64) {
     // A full capacity names what is full (the magnets).
     let name = match limit {
         Limit::Capacity => "magnets".to_string(),
+        Limit::NeedsEndstops => "endstops".to_string(),
         _ => format!("{parameter:?}"),
     };
     assert!(text.contains(&name), "{text}");
@@ -69,7 +73,7 @@ fn set_up_in_physical_units_is_checked() {
         (0.0, Limit::Positive),
         (-1e3, Limit::Positive),
     ] {
-        check(err(KnobConfig::new(v, 1e-5, 0.05, 16384)), TimeStep, l, v);
+        check(err(KnobConfig::new(v, 1e-5, 0.05, 16384)), LoopRate, l, v);
     }
     for (v, l) in [
         (NAN, Limit::Finite),
@@ -93,6 +97,16 @@ fn set_up_in_physical_units_is_checked() {
     check(e, EncoderResolution, Limit::AtMost, f64::from(1u32 << 20));
     assert!((e.limit - std::f64::consts::TAU * 65536.0).abs() < 1e-6);
     assert!(Knob::<f32>::new(&fine, 0.0).is_ok());
+    // A float's spacing grows with the angle: between stops at ±135° an f32 step is
+    // 2.4e−7 rad (2⁻²² at 2.36), so a count must span four of them: 2π/(4·2⁻²²) counts per
+    // turn at most. A 32-bit encoder is refused there, a 22-bit one is not.
+    let stops = |counts: u32| KnobConfig::new(1e3, 1e-5, 0.05, counts).endstops(-2.356, 2.356);
+    let e = Knob::<f32>::new(&stops(u32::MAX), 0.0).unwrap_err();
+    check(e, EncoderResolution, Limit::AtMost, f64::from(u32::MAX));
+    let most = (std::f64::consts::TAU / (4.0 * 2f64.powi(-22))).floor();
+    assert!(e.limit == most || e.limit == (2.0 * most).floor(), "{e:?}");
+    assert!(Knob::<f32>::new(&stops(1 << 22), 0.0).is_ok());
+    assert!(Knob::<f64>::new(&stops(u32::MAX), 0.0).is_ok());
 
     // Damping.
     check(
@@ -273,6 +287,25 @@ fn stiffness_beyond_what_the_loop_guarantees_is_refused_with_the_bound() {
     let e = err(coarse.detent_stiffness(0.3));
     assert_eq!(e.bound, Limit::CountTorque(Zone::Free), "{e:?}");
     assert!(e.value > e.limit && e.limit == 0.05 / 8.0, "{e:?}");
+    // The crate-wide error names the encoder, and the resolution that would pass; that
+    // resolution is accepted (a count's torque scales with the count).
+    let Error::OutOfRange {
+        parameter: EncoderResolution,
+        value,
+        bound: Bound::AtLeast { min },
+    } = e.error
+    else {
+        panic!("{e:?}");
+    };
+    assert!(value == 1024.0 && min > value, "{e:?}");
+    let finer = KnobConfig::new(1_000.0, 1e-5, 0.05, (1.01 * min).ceil() as u32).detent_width(0.2);
+    assert!(Knob::<f32>::new(&finer.detent_stiffness(0.3), 0.0).is_ok());
+    assert!(
+        e.error
+            .to_string()
+            .starts_with("EncoderResolution = 1024 is outside"),
+        "{e}"
+    );
     assert!(Knob::<f32>::new(&coarse.detent_stiffness(0.02), 0.0).is_ok());
     // The same stiffness at 10 kHz is accepted: the bound grows with the rate.
     let fast = KnobConfig::new(10_000.0, 1e-5, 0.05, 16384)

@@ -8,7 +8,7 @@ use super::stability::{
     slowest_decay, sqrt,
 };
 use super::validate::{Validated, libm_free_floor};
-use crate::error::Parameter;
+use crate::error::{Bound, Error, Parameter};
 use crate::scalar::Scalar;
 
 impl KnobConfig {
@@ -102,11 +102,17 @@ impl KnobConfig {
         for z in 0..3 {
             let ripple = (stiffness[z] + d.damping * alpha / d.dt) * d.count;
             if present[z] && ripple > most {
-                return Err(KnobError::range(
-                    if stiffness[z] * d.count > 0.5 * most {
-                        P::SpringConstant
-                    } else {
-                        P::DampingConstant
+                // The crate-wide error names the encoder, the one remedy that works for
+                // every zone and damping: a count's torque scales with the count, so
+                // `counts·ripple/most` counts per turn would pass.
+                let counts = core::f64::consts::TAU / d.count;
+                return Err(KnobError::new(
+                    Error::OutOfRange {
+                        parameter: P::EncoderResolution,
+                        value: counts,
+                        bound: Bound::AtLeast {
+                            min: counts * ripple / most,
+                        },
                     },
                     Limit::CountTorque(super::stability::ZONES[z]),
                     ripple,

@@ -59,11 +59,13 @@ pub enum Limit {
     Capacity,
     /// The value (an angle, or a gain in angle⁻¹) exceeds what the backend holds, `limit`.
     BackendRange,
-    /// A detent count needs endstops to spread over (`value` is the count).
+    /// A detent count needs endstops to spread over (`value` is the count, `limit` NaN;
+    /// the crate-wide error is [`Error::NeedsEndstops`]).
     NeedsEndstops,
     /// One encoder count commands more torque (N·m, `value`) through the zone's spring and
     /// filtered damper, `(K + B·α/dt)·count`, than `limit` ([`COUNT_TORQUE_FRACTION`] of the
-    /// torque limit): the knob would buzz at rest, toggling a count.
+    /// torque limit): the knob would buzz at rest, toggling a count. The crate-wide error
+    /// names the encoder resolution, with the counts per turn that would pass.
     ///
     /// [`COUNT_TORQUE_FRACTION`]: crate::knob::stability::COUNT_TORQUE_FRACTION
     CountTorque(Zone),
@@ -184,6 +186,9 @@ impl KnobError {
             Limit::NotNegative => Bound::NonNegative,
             Limit::AtLeast => Bound::AtLeast { min: limit },
             Limit::Below => Bound::Below { max: limit },
+            Limit::NeedsEndstops => {
+                return Self::new(Error::NeedsEndstops, bound, value, limit);
+            }
             Limit::Capacity => {
                 return Self::new(
                     Error::CapacityFull {
@@ -199,7 +204,6 @@ impl KnobError {
             | Limit::LoopDamping
             | Limit::PeakTorque
             | Limit::BackendRange
-            | Limit::NeedsEndstops
             | Limit::CountTorque(_) => Bound::AtMost { max: limit },
         };
         Self::new(

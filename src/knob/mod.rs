@@ -265,7 +265,7 @@ impl<S: Scalar> Knob<S> {
     ///
     /// | argument | error, bound |
     /// |---|---|
-    /// | rate, inertia, torque limit not finite or `≤ 0` | `NotFinite` / `NotPositive` (`TimeStep`, `Inertia`, `TorqueLimit`) |
+    /// | rate, inertia, torque limit not finite or `≤ 0` | `NotFinite` / `NotPositive` (`LoopRate`, `Inertia`, `TorqueLimit`) |
     /// | encoder counts 0; more per turn than the backend resolves | `NotPositive(EncoderResolution)`; `OutOfRange`, `AtMost` |
     /// | damping ratio outside [`DAMPING_RATIO_RANGE`]; damping negative | `OutOfRange(DampingRatio)` `AtLeast`/`AtMost`; `Negative(DampingConstant)` |
     /// | endstops not finite, `min ≥ max`, beyond half the backend's range | `NotFinite` / `OutOfRange(Position)` `Below`/`BackendRange` |
@@ -276,7 +276,7 @@ impl<S: Scalar> Knob<S> {
     /// | a detent's or magnet's peak torque above the torque limit | `OutOfRange(SpringConstant)`, [`Limit::PeakTorque`] |
     /// | a zone's stiffness beyond the loop guarantee | `OutOfRange(SpringConstant)`, [`Limit::LoopStiffness`] with the stiffest guaranteed |
     /// | damping beyond the loop guarantee | `OutOfRange(DampingConstant)`, [`Limit::LoopDamping`] |
-    /// | one encoder count commanding more than ⅛ of the limit in a zone | `OutOfRange`, [`Limit::CountTorque`] |
+    /// | one encoder count commanding more than ⅛ of the limit in a zone | `OutOfRange` (`EncoderResolution`, the counts per turn that would pass), [`Limit::CountTorque`] |
     /// | more than [`MAX_MAGNETS`] magnets | `CapacityFull` |
     /// | a magnet outside the endstops; capture radius too small, or zones overlapping | `OutOfRange(Position)`; `OutOfRange(CaptureRadius)` |
     /// | a gain or angle the backend cannot hold | `OutOfRange`, [`Limit::BackendRange`] |

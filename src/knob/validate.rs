@@ -79,7 +79,7 @@ impl KnobConfig {
     /// Checks everything, for backend `S`.
     pub(crate) fn validate<S: Scalar>(&self) -> Result<Validated, KnobError> {
         use Parameter as P;
-        let rate = KnobError::positive(self.rate, P::TimeStep)?;
+        let rate = KnobError::positive(self.rate, P::LoopRate)?;
         let dt = 1.0 / rate;
         let inertia = KnobError::positive(self.inertia, P::Inertia)?;
         let torque_limit = KnobError::positive(self.torque_limit, P::TorqueLimit)?;
@@ -137,6 +137,21 @@ impl KnobConfig {
                         m,
                         backend_half,
                     ));
+                }
+                if S::RESOLUTION == 0.0 {
+                    // A float's spacing grows with the angle: at the farther stop a count
+                    // must still span four float steps, or the rest zone and the
+                    // hysteresis (a count or two) cannot be told apart. (Fixed point's
+                    // spacing is its last bit everywhere, checked above.)
+                    let step = float_step::<S>(m);
+                    if count < 4.0 * step {
+                        return Err(KnobError::range(
+                            P::EncoderResolution,
+                            Limit::AtMost,
+                            f64::from(self.counts_per_turn),
+                            libm_free_floor(TAU / (4.0 * step)),
+                        ));
+                    }
                 }
                 Some((lo, hi))
             }
@@ -488,4 +503,23 @@ impl KnobConfig {
             magnet_radius,
         )
     }
+}
+
+/// The spacing of backend `S`'s numbers at `angle` (positive, finite): the smallest power
+/// of two that moves the backend's value of `angle` when added to it (its last place, or
+/// half of it where the sum ties and rounds away). Set-up only: at most about a hundred
+/// doublings.
+fn float_step<S: Scalar>(angle: f64) -> f64 {
+    let at = S::from_f64(angle);
+    let exact = at.to_f64();
+    // A power of two at least the angle (which moves it), then halved while half of it
+    // still moves it.
+    let mut step = 1.0;
+    while step < exact {
+        step *= 2.0;
+    }
+    while step > f64::MIN_POSITIVE && S::from_f64(exact + 0.5 * step) != at {
+        step *= 0.5;
+    }
+    step
 }
