@@ -1,5 +1,5 @@
 //! The golden values of the `knob` scene (`firmware/src/scenes/knob.rs`), which
-//! `examples/knob.rs` checks its `f32` and `I16F16` knobs against on the host and on the
+//! `examples/check_knob.rs` checks its `f32` and `I16F16` knobs against on the host and on the
 //! microcontrollers: the torque and the detent index after each period of the scene's
 //! scripted encoder sweep.
 //!

@@ -106,7 +106,7 @@ pub fn trace(dir: &Path) {
     let path = dir.join("knob_drag.svg");
     grid.write(&path).expect("write knob_drag.svg");
     println!(
-        "  wrote {} (cargo run --example knob draws a longer scene)\n",
+        "  wrote {} (cargo run --example check_knob draws a longer scene)\n",
         path.display()
     );
 }

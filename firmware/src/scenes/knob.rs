@@ -1,5 +1,5 @@
 //! The `knob` scene: a knob of 20 detents over three quarters of a turn, with endstops,
-//! at 1 kHz. Shared by `examples/knob.rs` (host and firmware) and by
+//! at 1 kHz. Shared by `examples/check_knob.rs` (host and firmware) and by
 //! `tests/knob_golden.rs`, which plays its scripted encoder sweep on an `f64` model of the
 //! knob's torque law and writes `firmware/src/golden/knob.rs`. Change it (and the model's
 //! constants with it), then regenerate the golden values:

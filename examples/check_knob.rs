@@ -1,9 +1,9 @@
 //! A haptic knob on a simulated rotor, turned by a scripted hand.
 //!
 //! ```text
-//! cargo run --release --example knob                                # host: trace + SVG
-//! cargo run --release --target thumbv7em-none-eabihf --example knob # QEMU mps2-an386, f32
-//! cargo run --release --target thumbv6m-none-eabi --example knob    # QEMU microbit, I16F16
+//! cargo run --release --example check_knob                                # host: trace + SVG
+//! cargo run --release --target thumbv7em-none-eabihf --example check_knob # QEMU mps2-an386, f32
+//! cargo run --release --target thumbv6m-none-eabi --example check_knob    # QEMU microbit, I16F16
 //! ```
 //!
 //! The scene: a 1 kHz control loop (one period of delay, as in SimpleFOC firmware), a
