@@ -6,25 +6,11 @@
 
 use stiffspring::presets::{react_spring, swiftui};
 use stiffspring::{
-    BatchIndex, BatchMotion, Error, I16F16, I32F32, Motion, Parameter, Scalar, SpringBatch,
-    SpringValue, Tuning,
+    BatchIndex, BatchMotion, Error, Motion, Parameter, Scalar, SpringBatch, SpringValue, Tuning,
 };
 
-const DT60: f64 = 1.0 / 60.0;
-const DT120: f64 = 1.0 / 120.0;
-
-macro_rules! each_backend {
-    ($f:ident $(, $arg:expr)*) => {{
-        $f::<f32>($($arg),*);
-        $f::<f64>($($arg),*);
-        $f::<I16F16>($($arg),*);
-        $f::<I32F32>($($arg),*);
-    }};
-}
-
-fn s<S: Scalar>(x: f64) -> S {
-    S::from_f64(x)
-}
+mod support;
+use support::{DT60, DT120, s};
 
 /// Bit-identical: equal, and for floats also the same sign of zero.
 fn same_all<S: Scalar, const D: usize>(a: [S; D], b: [S; D]) -> bool {

@@ -18,22 +18,8 @@ use lab::reference::analytic;
 use std::f64::consts::TAU;
 use stiffspring::{I16F16, I32F32, Motion, Oscillator, RestThreshold, Scalar, SpringValue, Tuning};
 
-const DT60: f64 = 1.0 / 60.0;
-const DT120: f64 = 1.0 / 120.0;
-
-/// Runs a generic function once per backend.
-macro_rules! each_backend {
-    ($f:ident $(, $arg:expr)*) => {{
-        $f::<f32>($($arg),*);
-        $f::<f64>($($arg),*);
-        $f::<I16F16>($($arg),*);
-        $f::<I32F32>($($arg),*);
-    }};
-}
-
-fn s<S: Scalar>(x: f64) -> S {
-    S::from_f64(x)
-}
+mod support;
+use support::{DT60, DT120, s};
 
 fn f<S: Scalar, const D: usize>(a: [S; D]) -> [f64; D] {
     a.map(|x| x.to_f64())

@@ -12,21 +12,8 @@
 use stiffspring::presets::{android, react_spring, swiftui};
 use stiffspring::{I16F16, I32F32, Motion, Oscillator, RestThreshold, Scalar, SpringValue, Tuning};
 
-const DT60: f64 = 1.0 / 60.0;
-const DT120: f64 = 1.0 / 120.0;
-
-macro_rules! each_backend {
-    ($f:ident $(, $arg:expr)*) => {{
-        $f::<f32>($($arg),*);
-        $f::<f64>($($arg),*);
-        $f::<I16F16>($($arg),*);
-        $f::<I32F32>($($arg),*);
-    }};
-}
-
-fn s<S: Scalar>(x: f64) -> S {
-    S::from_f64(x)
-}
+mod support;
+use support::{DT60, DT120, s};
 
 /// Every UI preset: SwiftUI's, react-spring's, and Android stiffness × damping.
 fn ui_oscillators() -> Vec<(String, Oscillator)> {

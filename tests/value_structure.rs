@@ -4,23 +4,10 @@
 //! with its one asymmetry: a state half-way between two positions reads as the upper).
 
 use stiffspring::presets::{android, react_spring, swiftui};
-use stiffspring::{I16F16, I32F32, Motion, Scalar, SpringValue, Tuning};
+use stiffspring::{Motion, Scalar, SpringValue, Tuning};
 
-const DT60: f64 = 1.0 / 60.0;
-const DT120: f64 = 1.0 / 120.0;
-
-macro_rules! each_backend {
-    ($f:ident $(, $arg:expr)*) => {{
-        $f::<f32>($($arg),*);
-        $f::<f64>($($arg),*);
-        $f::<I16F16>($($arg),*);
-        $f::<I32F32>($($arg),*);
-    }};
-}
-
-fn s<S: Scalar>(x: f64) -> S {
-    S::from_f64(x)
-}
+mod support;
+use support::{DT60, DT120, s};
 
 /// Bit-identical: equal, and for floats also the same sign of zero.
 fn same<S: Scalar>(a: S, b: S) -> bool {
