@@ -1,6 +1,6 @@
 //! What the value and batch tests share: their two frame rates, a loop over every
-//! backend, and a conversion into the backend under test. (`tests/support/` is a module,
-//! not a test target: cargo builds only `tests/*.rs` and `tests/*/main.rs` as tests.)
+//! backend, and a conversion into the backend under test. A module in a folder, so that
+//! cargo does not build it as a test of its own.
 
 #![allow(dead_code)] // each test file uses its own part of it
 
