@@ -16,27 +16,12 @@ use stiffspring::scene::{
 };
 use stiffspring::{Bound, Error, I16F16, I32F32, Parameter, Remedy, Scalar, Tuning};
 
+mod support;
+use support::from;
+
 const NAN: f64 = f64::NAN;
 const INF: f64 = f64::INFINITY;
 const DT: f64 = 0.01;
-
-/// `x` in the backend: NaN and infinities as they are in floats (`from_f64` maps NaN to 0
-/// and saturates), saturated in fixed point.
-fn from<S: Scalar>(x: f64) -> S {
-    if S::RESOLUTION == 0.0 && !x.is_finite() {
-        let big = S::from_f64(f64::MAX);
-        let inf = big.add(big);
-        if x.is_nan() {
-            inf.sub(inf)
-        } else if x > 0.0 {
-            inf
-        } else {
-            inf.neg()
-        }
-    } else {
-        S::from_f64(x)
-    }
-}
 
 fn v2<S: Scalar>(x: f64, y: f64) -> [S; 2] {
     [from(x), from(y)]

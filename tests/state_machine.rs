@@ -33,24 +33,13 @@ use stiffspring::scene::{
 };
 use stiffspring::{Error, I16F16, Knob, KnobConfig, Scalar, Tuning};
 
+mod support;
+use support::{from, number};
+
 const DT: f64 = 1.0 / 60.0;
 
 const P: usize = 8;
 const K: usize = 12;
-
-/// A number that is usually valid (in `[lo, hi]`) and sometimes not.
-fn number(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
-    prop_oneof![
-        40 => lo..=hi,
-        1 => Just(f64::NAN),
-        1 => Just(f64::INFINITY),
-        1 => Just(f64::NEG_INFINITY),
-        1 => Just(0.0),
-        1 => Just(-1.0),
-        1 => Just(1e300),
-        1 => Just(-1e300),
-    ]
-}
 
 #[derive(Clone, Debug)]
 enum Op {
@@ -189,23 +178,6 @@ struct Machine<S: Scalar> {
 fn v2<S: Scalar>(x: f64, y: f64) -> [S; 2] {
     // The float backends take NaN and infinity as they come; fixed point cannot hold them.
     [from(x), from(y)]
-}
-
-fn from<S: Scalar>(x: f64) -> S {
-    if S::RESOLUTION == 0.0 && !x.is_finite() {
-        // `from_f64` maps NaN to 0 and clamps infinity: build the value by arithmetic.
-        let big = S::from_f64(f64::MAX);
-        let inf = big.add(big);
-        if x.is_nan() {
-            inf.sub(inf)
-        } else if x > 0.0 {
-            inf
-        } else {
-            inf.neg()
-        }
-    } else {
-        S::from_f64(x)
-    }
 }
 
 fn tuning(ck: f64, cd: f64) -> Option<Tuning> {

@@ -20,22 +20,11 @@ use stiffspring::{
     BatchIndex, Error, I16F16, I32F32, Motion, Parameter, Scalar, SpringBatch, SpringValue, Tuning,
 };
 
+mod support;
+use support::{from, number};
+
 const DT: f64 = 1.0 / 60.0;
 const N: usize = 4;
-
-/// A number that is usually valid (in `[lo, hi]`) and sometimes not.
-fn number(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
-    prop_oneof![
-        40 => lo..=hi,
-        1 => Just(f64::NAN),
-        1 => Just(f64::INFINITY),
-        1 => Just(f64::NEG_INFINITY),
-        1 => Just(0.0),
-        1 => Just(-1.0),
-        1 => Just(1e300),
-        1 => Just(-1e300),
-    ]
-}
 
 #[derive(Clone, Debug)]
 enum Op {
@@ -87,24 +76,6 @@ fn op() -> impl Strategy<Value = Op> {
         1 => (number(0.1, 20.0), number(0.0, 20.0)).prop_map(|(f, z)| Op::BatchRetune(f, z)),
         3 => (1u16..300).prop_map(Op::BatchStep),
     ]
-}
-
-/// `x` in the backend: NaN and infinities as they are in floats (`from_f64` would map NaN
-/// to 0 and saturate the infinities), saturated in fixed point.
-fn from<S: Scalar>(x: f64) -> S {
-    if S::RESOLUTION == 0.0 && !x.is_finite() {
-        let big = S::from_f64(f64::MAX);
-        let inf = big.add(big);
-        if x.is_nan() {
-            inf.sub(inf)
-        } else if x > 0.0 {
-            inf
-        } else {
-            inf.neg()
-        }
-    } else {
-        S::from_f64(x)
-    }
 }
 
 fn v2<S: Scalar>(x: f64, y: f64) -> [S; 2] {
