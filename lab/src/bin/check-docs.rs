@@ -20,7 +20,8 @@
 //!    runs; or a `cargo test` command selects only ignored tests without `--ignored` or
 //!    `--include-ignored`, or passes `--ignored` where none of the selected tests is;
 //! 4. a doc **refers outside the repository**: any text file that Git tracks naming
-//!    the design brief `DESIGN.md` or the absolute prefixes `/work/` or `/home/`, or a
+//!    a design brief kept outside the repository (by its file name, see
+//!    `forbidden_words`) or an absolute prefix of the machines' home folders, or a
 //!    doc (Markdown, doc comments, and the comments of Rust, TOML and shell files) with
 //!    a `../` path that leaves the repository.
 //!
@@ -969,7 +970,7 @@ mod tests {
             normalise(Path::new("docs/../README.md")).as_deref(),
             Some("README.md")
         );
-        assert_eq!(normalise(Path::new("../shared/x.md")), None);
+        assert_eq!(normalise(Path::new("../outside/x.md")), None);
         assert_eq!(
             markdown_links("[a](docs/x.md#y), [b](https://e.org), [c](crate::X), [d](self)"),
             ["docs/x.md"]
