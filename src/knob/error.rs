@@ -115,52 +115,12 @@ impl KnobError {
 
     /// A finite, strictly positive value, or the error for `parameter`.
     pub(crate) fn positive(value: f64, parameter: Parameter) -> Result<f64, Self> {
-        if !value.is_finite() {
-            Err(Self::new(
-                Error::NotFinite { parameter },
-                Limit::Finite,
-                value,
-                f64::NAN,
-            ))
-        } else if value <= 0.0 {
-            Err(Self::new(
-                Error::OutOfRange {
-                    parameter,
-                    value,
-                    bound: Bound::Positive,
-                },
-                Limit::Positive,
-                value,
-                0.0,
-            ))
-        } else {
-            Ok(value)
-        }
+        Self::checked(value, parameter, Bound::Positive, Limit::Positive)
     }
 
     /// A finite, non-negative value, or the error for `parameter`.
     pub(crate) fn non_negative(value: f64, parameter: Parameter) -> Result<f64, Self> {
-        if !value.is_finite() {
-            Err(Self::new(
-                Error::NotFinite { parameter },
-                Limit::Finite,
-                value,
-                f64::NAN,
-            ))
-        } else if value < 0.0 {
-            Err(Self::new(
-                Error::OutOfRange {
-                    parameter,
-                    value,
-                    bound: Bound::NonNegative,
-                },
-                Limit::NotNegative,
-                value,
-                0.0,
-            ))
-        } else {
-            Ok(value)
-        }
+        Self::checked(value, parameter, Bound::NonNegative, Limit::NotNegative)
     }
 
     /// A finite value, or the error for `parameter`.
@@ -175,6 +135,15 @@ impl KnobError {
                 f64::NAN,
             ))
         }
+    }
+
+    /// The crate's [`check`](crate::error::check) of `value` against a bound whose limit is
+    /// 0, with the knob's name for that bound.
+    fn checked(value: f64, parameter: Parameter, bound: Bound, limit: Limit) -> Result<f64, Self> {
+        crate::error::check(value, parameter, bound).map_err(|error| match error {
+            Error::NotFinite { .. } => Self::new(error, Limit::Finite, value, f64::NAN),
+            _ => Self::new(error, limit, value, 0.0),
+        })
     }
 
     /// `value` of `parameter` against `limit` under `bound`, with the crate-wide error that
