@@ -36,7 +36,6 @@ pub(crate) struct Start<S: Scalar> {
     /// so that no later step can overflow (see `Tuning::growth`); `STATE_MAX / 2` in fixed
     /// point, which saturates.
     pub(crate) limit: S::State,
-    limit_f64: f64,
 }
 
 impl<S: Scalar> Start<S> {
@@ -74,7 +73,6 @@ impl<S: Scalar> Start<S> {
             inverse_velocity_weight: S::factor(inverse(q)),
             inverse_retention: S::factor(inverse(tuning.retention())),
             limit: S::state_from_f64(limit),
-            limit_f64: limit,
         })
     }
 
@@ -115,7 +113,7 @@ impl<S: Scalar> Start<S> {
 
     /// `state` if it lies within the limit, else the error naming `parameter`.
     pub(crate) fn check(&self, state: S::State, parameter: Parameter) -> Result<S::State, Error> {
-        bounded::<S>(state, self.limit, self.limit_f64, parameter)
+        bounded::<S>(state, self.limit, parameter)
     }
 
     /// `state` limited to the bound (saturating), for the infallible setters.
@@ -130,13 +128,12 @@ impl<S: Scalar> Start<S> {
     }
 }
 
-/// `state` if `|state| ≤ limit` (`limit_f64` in `f64`), else the error that names
+/// `state` if `|state| ≤ limit`, else the error that names
 /// `parameter`, the value and the limit, and says what would hold it: a larger unit, which
 /// holds the same motion in fewer units in every backend.
 pub(crate) fn bounded<S: Scalar>(
     state: S::State,
     limit: S::State,
-    limit_f64: f64,
     parameter: Parameter,
 ) -> Result<S::State, Error> {
     if S::within(state, limit) {
@@ -146,7 +143,7 @@ pub(crate) fn bounded<S: Scalar>(
             parameter,
             backend: S::NAME,
             value: S::state_to_f64(state),
-            limit: limit_f64,
+            limit: S::state_to_f64(limit),
             remedy: Remedy::LargerUnit,
         })
     }

@@ -216,6 +216,6 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         } else {
             0.5 * S::STATE_MAX
         };
-        crate::start::bounded::<S>(state, S::state_from_f64(max), max, parameter)
+        crate::start::bounded::<S>(state, S::state_from_f64(max), parameter)
     }
 }
