@@ -626,38 +626,12 @@ const _: () = {
 // The harness
 // ---------------------------------------------------------------------------------------
 
-/// The CMSDK TIMER0 of the MPS2 boards: QEMU does not implement the DWT cycle counter,
-/// but with `-icount shift=10` this 25 MHz timer advances by exactly 40/1024 of a tick
-/// per instruction (ARM's MPS2 documentation for the address, QEMU's for `-icount`).
+/// The MPS2 boards' timer (`firmware::timer`), read under `-icount shift=10`
+/// (`scripts/cost`): one instruction is 2^10 ns of virtual time, 25.6 ticks.
 #[cfg(target_os = "none")]
-mod timer {
-    const CTRL: *mut u32 = 0x4000_0000 as *mut u32;
-    const VALUE: *mut u32 = 0x4000_0004 as *mut u32;
-    const RELOAD: *mut u32 = 0x4000_0008 as *mut u32;
-
-    /// Starts the timer counting down from `u32::MAX`.
-    pub fn start() {
-        // SAFETY: the MPS2 boards map TIMER0's registers here; nothing else uses them.
-        unsafe {
-            RELOAD.write_volatile(u32::MAX);
-            VALUE.write_volatile(u32::MAX);
-            CTRL.write_volatile(1);
-        }
-    }
-
-    /// The current count (it counts down).
-    #[inline(always)]
-    pub fn now() -> u32 {
-        // SAFETY: as in `start`; a read has no side effect.
-        unsafe { VALUE.read_volatile() }
-    }
-
-    /// Instructions in `ticks`: one instruction is 2^10 ns of virtual time at
-    /// `-icount shift=10`, one tick 40 ns (25 MHz), so 25.6 ticks per instruction.
-    pub fn instructions(ticks: u32) -> u64 {
-        (ticks as u64 * 40 + 512) / 1024
-    }
-}
+use firmware::timer;
+#[cfg(target_os = "none")]
+const ICOUNT_SHIFT: u32 = 10;
 
 /// The cost of `n` steps of `bench`: instructions on the target. Never inlined, so
 /// that the instructions between the two timer reads other than the steps are the same
@@ -674,7 +648,7 @@ fn count<B: Bench>(bench: &mut B, n: u32) -> u64 {
         core::hint::black_box(&mut *bench);
     }
     let end = timer::now();
-    timer::instructions(start.wrapping_sub(end))
+    u64::from(timer::instructions(start.wrapping_sub(end), ICOUNT_SHIFT))
 }
 
 /// The cost of `n` steps of `bench`: nanoseconds of wall clock on the host.

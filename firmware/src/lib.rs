@@ -42,6 +42,9 @@ extern crate std;
 pub mod display;
 pub mod golden;
 pub mod scenes;
+/// The MPS2 boards' timer as an instruction counter under QEMU `-icount`.
+#[cfg(target_os = "none")]
+pub mod timer;
 
 mod output;
 
