@@ -91,6 +91,12 @@ pub enum Parameter {
     SnapSpacing,
     /// A rubber band's dimension (the viewport it stretches over).
     RubberBand,
+    /// A scene's linear damping rate `c` (per second: a free particle's velocity decays
+    /// as `e^{−c·t}`).
+    LinearDamping,
+    /// An angular scene's angular damping rate `c` (per second: a free body's angular
+    /// velocity decays as `e^{−c·t}`).
+    AngularDamping,
 }
 
 /// The range a rejected number had to lie in.

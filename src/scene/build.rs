@@ -76,6 +76,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         let generation = self.particles.get(slot).map_or(0, |p| p.generation);
         let particle = Particle {
             inverse_mass,
+            damping: self.config.damping.0,
             springs: 0,
             island: slot as u16,
             live: true,
@@ -89,6 +90,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             let _ = self.positions.push(state);
             let _ = self.remainders.push([Default::default(); D]);
             let _ = self.velocities.push([S::STATE_ZERO; D]);
+            let _ = self.drag.push(S::factor(self.config.damping.1));
             let _ = self.islands.push(Island::default());
             let _ = self.accumulated.push([S::STATE_ZERO; D]);
         } else {
@@ -96,6 +98,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             self.positions[slot] = state;
             self.remainders[slot] = [Default::default(); D];
             self.velocities[slot] = [S::STATE_ZERO; D];
+            self.drag[slot] = S::factor(self.config.damping.1);
         }
         self.islands[slot] = Island {
             awake: true,

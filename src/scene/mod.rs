@@ -19,7 +19,8 @@
 //!
 //! # One step, in order
 //!
-//! 1. **Gravity**: every awake free particle's step velocity gains `g·dt²`.
+//! 1. **Drag and gravity**: every awake free particle's step velocity `u` loses `d·u` to
+//!    its drag ([`SceneConfig::linear_damping`], `d = 1 − e^{−c·dt}`) and gains `g·dt²`.
 //! 2. **Springs**, through the crate's two-body kernel ([`kernel`](crate::kernel)):
 //!    - [`Stepper::GaussSeidel`]: the impulse form, spring by spring, in place;
 //!    - [`Stepper::Jacobi`]: the force form, every spring from the same state, summed.
@@ -68,6 +69,7 @@
 mod angular;
 mod build;
 mod config;
+mod damping;
 mod events;
 mod ids;
 mod limits;
@@ -94,6 +96,8 @@ use heapless::Vec;
 pub(crate) struct Particle {
     /// 0 for a pinned particle.
     pub(crate) inverse_mass: f64,
+    /// The drag rate `c` (per second) on its motion (see [`damping`]).
+    pub(crate) damping: f64,
     /// Live springs with this particle as an end.
     pub(crate) springs: u16,
     /// The slot of its island's root (free particles only).
@@ -195,6 +199,11 @@ where
     /// other backends, see [`Scalar::Remainder`]).
     pub(crate) remainders: Vec<[S::Remainder; D], P>,
     pub(crate) velocities: Vec<[S::State; D], P>,
+    /// Each particle's drag in its step form `d = 1 − e^{−c·dt}` (see [`damping`]).
+    pub(crate) drag: Vec<S::Factor, P>,
+    /// Some awake free particle has a drag: the step applies them (decided at set-up, so
+    /// that a scene without drag skips the stage).
+    pub(crate) dragged: bool,
     pub(crate) particles: Vec<Particle, P>,
     pub(crate) springs: Vec<Spring<S, L>, K>,
     pub(crate) islands: Vec<Island, P>,
@@ -266,6 +275,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             positions: Vec::new(),
             remainders: Vec::new(),
             velocities: Vec::new(),
+            drag: Vec::new(),
+            dragged: false,
             particles: Vec::new(),
             springs: Vec::new(),
             islands: Vec::new(),
@@ -366,9 +377,16 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn velocity(&self, particle: ParticleId) -> Result<[S; D], Error> {
-        let u = self.velocities[self.slot(particle)?];
-        let per_second = S::factor(1.0 / self.config.dt);
+        let slot = self.slot(particle)?;
+        let u = self.velocities[slot];
+        let per_second = S::factor(1.0 / self.start_factor(slot));
         Ok(u.map(|u| S::narrow(S::scale(u, per_second))))
+    }
+
+    /// The step velocity per unit of velocity of a particle (`dt` without drag; see
+    /// [`damping::start_factor`]).
+    pub(crate) fn start_factor(&self, slot: usize) -> f64 {
+        damping::start_factor(self.particles[slot].damping, self.config.dt)
     }
 
     /// True for a pinned particle.
@@ -575,10 +593,16 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// ```
     pub fn momentum(&self) -> [f64; D] {
         let mut total = [0.0; D];
-        for (p, u) in self.particles.iter().zip(self.velocities.iter()) {
+        for (slot, (p, u)) in self
+            .particles
+            .iter()
+            .zip(self.velocities.iter())
+            .enumerate()
+        {
             if p.live && p.inverse_mass > 0.0 {
+                let per_step = p.inverse_mass * self.start_factor(slot);
                 for k in 0..D {
-                    total[k] += S::state_to_f64(u[k]) / (p.inverse_mass * self.config.dt);
+                    total[k] += S::state_to_f64(u[k]) / per_step;
                 }
             }
         }

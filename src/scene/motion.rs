@@ -55,7 +55,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         Ok(())
     }
 
-    /// Sets a free particle's velocity, in units per second.
+    /// Sets a free particle's velocity, in units per second. With a drag (see
+    /// [`Scene::set_linear_damping`]) a free particle then follows its continuous decay
+    /// exactly: it moves by `v·(1 − e^{−c·t})/c` after `t` seconds.
     ///
     /// # Errors
     ///
@@ -73,7 +75,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// ```
     pub fn set_velocity(&mut self, particle: ParticleId, velocity: [S; D]) -> Result<(), Error> {
         let slot = self.free_slot(particle)?;
-        let dt = S::factor(self.config.dt);
+        let dt = S::factor(self.start_factor(slot));
         let mut u = [S::STATE_ZERO; D];
         for k in 0..D {
             let v = check_position(velocity[k], Parameter::Velocity)?;
@@ -85,7 +87,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
                     parameter: Parameter::Velocity,
                     value: v.to_f64(),
                     bound: Bound::MagnitudeAtMost {
-                        max: S::NETWORK_MAX / self.config.dt,
+                        max: S::NETWORK_MAX / self.start_factor(slot),
                     },
                 });
             }
@@ -116,7 +118,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// ```
     pub fn apply_impulse(&mut self, particle: ParticleId, impulse: [S; D]) -> Result<(), Error> {
         let slot = self.free_slot(particle)?;
-        let scale = S::factor(self.particles[slot].inverse_mass * self.config.dt);
+        let scale = S::factor(self.particles[slot].inverse_mass * self.start_factor(slot));
         let mut u = self.velocities[slot];
         for k in 0..D {
             let j = check_position(impulse[k], Parameter::Impulse)?;

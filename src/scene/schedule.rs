@@ -104,6 +104,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// only when something falls asleep, wakes up or changes.
     pub(crate) fn reschedule(&mut self) {
         self.free.clear();
+        self.dragged = false;
         self.awake_islands.clear();
         self.one_sided.clear();
         self.two_sided.clear();
@@ -115,6 +116,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
                 if self.islands[island].awake {
                     // Each list has the capacity of what it lists: always room.
                     let _ = self.free.push(p as u16);
+                    self.dragged |= particle.damping > 0.0;
                     if island == p {
                         let _ = self.awake_islands.push(p as u16);
                     }

@@ -162,7 +162,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     pub fn step(&mut self) -> SceneMotion {
         self.fell_asleep.clear();
         let woke = core::mem::take(&mut self.woken);
-        self.apply_gravity();
+        self.apply_drag_and_gravity();
         match self.config.stepper {
             Stepper::GaussSeidel => self.solve_in_place(),
             Stepper::Jacobi => self.solve_from_one_state(),
@@ -177,13 +177,26 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         }
     }
 
-    /// Stage 1: `u += g·dt²` for every awake free particle.
-    fn apply_gravity(&mut self) {
+    /// Stage 1: the drag, `u −= d·u` (see [`damping`](super::damping)), then gravity,
+    /// `u += g·dt²`, for every awake free particle. Each part is skipped when no particle
+    /// has it (decided at set-up).
+    fn apply_drag_and_gravity(&mut self) {
+        let n = self.velocities.len();
+        let velocities = &mut self.velocities[..n];
+        if self.dragged {
+            let drag = &self.drag[..n];
+            for &p in self.free.iter() {
+                let (u, d) = (&mut velocities[p as usize], drag[p as usize]);
+                for k in 0..D {
+                    u[k] = S::state_sub(u[k], S::scale(u[k], d));
+                }
+            }
+        }
         let Some(g) = self.gravity_step else {
             return;
         };
         for &p in self.free.iter() {
-            let u = &mut self.velocities[p as usize];
+            let u = &mut velocities[p as usize];
             for k in 0..D {
                 u[k] = S::state_add(u[k], g[k]);
             }
