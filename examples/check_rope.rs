@@ -27,7 +27,7 @@ use stiffspring::{I16F16, Scalar};
 /// 1.1 m swinging through 2 m. Measured on the host and both machines (the same figures,
 /// bit for bit; every run prints them):
 ///
-/// - `f32`: worst 2.4e−6 m, late in the swing (step 390). The library in `f64` follows
+/// - `f32`: worst 2.3e−6 m, late in the swing (step 390). The library in `f64` follows
 ///   the reference to rounding, so what is left is `f32` rounding of the impulses and
 ///   positions (an ulp of a position near 1 m is 1.2e−7), amplified by this chaotic
 ///   multi-pendulum. 1e−5 m is four times that; another length kernel (the linearised

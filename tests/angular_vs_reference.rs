@@ -96,6 +96,9 @@ fn build<S: Scalar, L: LengthKernel<S>>(
         (s.ck, s.cd) = (tuning.stiffness(), tuning.damping());
         s.rest_angle = scene.rest_length(added.spring).unwrap().to_f64();
     }
+    // The scene keeps each body's next step, its springs' pull included; the reference
+    // starts the same way, from its own pull.
+    net.pull(dt);
     Pair { scene, ids, net }
 }
 
@@ -119,8 +122,8 @@ fn run<S: Scalar, L: LengthKernel<S>>(
     for _ in 0..steps {
         let _ = pair.scene.step();
         match stepper {
-            Stepper::GaussSeidel => pair.net.step_gauss_seidel(dt),
-            Stepper::Jacobi => pair.net.step_jacobi(dt),
+            Stepper::GaussSeidel => pair.net.step_gauss_seidel_kept(dt),
+            Stepper::Jacobi => pair.net.step_jacobi_kept(dt),
         }
         let now = held(pair);
         for (i, b) in pair.net.bodies.iter().enumerate() {
@@ -274,11 +277,14 @@ where
         pair.scene.set_position(body, [start]).unwrap();
         let shift = wound + extra_turns * TAU;
         pair.net.bodies[1].angle = start.to_f64() - shift;
+        // The pull from the moved start, as the scene repulls it.
+        pair.net.bodies[1].omega = 0.0;
+        pair.net.pull(dt);
         for _ in 0..steps {
             let _ = pair.scene.step();
             match stepper {
-                Stepper::GaussSeidel => pair.net.step_gauss_seidel(dt),
-                Stepper::Jacobi => pair.net.step_jacobi(dt),
+                Stepper::GaussSeidel => pair.net.step_gauss_seidel_kept(dt),
+                Stepper::Jacobi => pair.net.step_jacobi_kept(dt),
             }
             let got = pair.scene.precise_position(body).unwrap()[0] - shift;
             worst = worst.max((got - pair.net.bodies[1].angle).abs());

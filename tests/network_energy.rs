@@ -7,9 +7,9 @@
 //!
 //! **The energy.** In step units (× dt²), with `u = v·dt` and `k·dt² = C_k·m_red`
 //! (eq. 27): kinetic `Σ ½·m·|u − ū|²` (in the frame of the centre of mass, whose motion
-//! momentum conservation keeps), potential `Σ ½·C_k·m_red·x·x₋₁` with `x₋₁` the extension
-//! at the previous positions `p − u`. That staggered potential is the shadow energy of
-//! the scheme: for a linear network stepped by Jacobi, `|u|² + pᵀK·p₋₁` is exactly
+//! momentum conservation keeps), potential `Σ ½·C_k·m_red·x·x₊₁` with `x₊₁` the extension
+//! at the next positions `p + u` (a scene's velocity is the step it moves next). That staggered potential is the shadow energy of
+//! the scheme: for a linear network stepped by Jacobi, `|u|² + pᵀK·p₊₁` is exactly
 //! invariant, and undamped Gauss-Seidel is the same map (each impulse `−C_k·x` depends on
 //! positions only). The naive `½·C_k·m_red·x²` swings by `±C_k/2` within every period and
 //! hides a drift. For the nonlinear (rotating, crumpling) rope the staggered form is
@@ -84,10 +84,10 @@ fn shadow_energy<S: Scalar>(
     for i in 0..N - 1 {
         let (a, b) = (i, i + 1);
         let x = (p[b][0] - p[a][0]).hypot(p[b][1] - p[a][1]) - 1.0;
-        let previous = (p[b][0] - u[b][0] - p[a][0] + u[a][0])
-            .hypot(p[b][1] - u[b][1] - p[a][1] + u[a][1])
+        let next = (p[b][0] + u[b][0] - p[a][0] - u[a][0])
+            .hypot(p[b][1] + u[b][1] - p[a][1] - u[a][1])
             - 1.0;
-        energy += 0.5 * case.ck * m_red * x * previous;
+        energy += 0.5 * case.ck * m_red * x * next;
     }
     energy
 }

@@ -572,3 +572,149 @@ fn full_sweep_writes_the_table_of_the_networks_doc() {
         assert!(r.measured() >= r.library, "{} {}", r.name, name(r.order));
     }
 }
+
+// ---------------------------------------------------------------------------
+// Every backend at the crate's limits
+// ---------------------------------------------------------------------------
+
+/// The library's scene of `top` in backend `S`, every spring added rigid under
+/// [`LimitPolicy::Clamp`] (so at its limit), or with the given per-spring coefficients
+/// under the default policy; deformed by `fraction` and run `steps` steps. True when every
+/// strain stays below 10 and finite.
+fn bounded_in<S: stiffspring::Scalar>(
+    top: &Topology,
+    order: Order,
+    coefficients: Option<(&[f64], &[f64])>,
+    fraction: f64,
+    steps: usize,
+) -> bool {
+    let mut config = SceneConfig::<S, 2>::new(DT)
+        .unwrap()
+        .stepper(stepper(order))
+        .no_sleep();
+    if coefficients.is_none() {
+        config = config.limit_policy(LimitPolicy::Clamp);
+    }
+    let mut scene = Scene::<S, 2, 64, 160>::new(config);
+    let at = |p: [f64; 2]| p.map(S::from_f64);
+    let ids: Vec<_> = top
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(i, &p)| {
+            if top.is_free(i) {
+                let mass = S::from_f64(1.0 / top.inverse_masses[i]);
+                scene.add_particle(at(p), mass).unwrap()
+            } else {
+                scene.add_pinned(at(p)).unwrap()
+            }
+        })
+        .collect();
+    for (k, &(a, b)) in top.springs.iter().enumerate() {
+        let tuning = match coefficients {
+            Some((ck, cd)) => Tuning::from_coefficients(ck[k], cd[k], DT).unwrap(),
+            None => Tuning::rigid(DT).unwrap(),
+        };
+        scene.add_spring_at_rest(ids[a], ids[b], &tuning).unwrap();
+    }
+    for (i, p) in top.deformed(fraction, 3).into_iter().enumerate() {
+        if top.is_free(i) {
+            scene.set_position(ids[i], at(p)).unwrap();
+        }
+    }
+    let rests: Vec<f64> = scene
+        .springs()
+        .map(|(k, _, _)| scene.rest_length(k).unwrap().to_f64())
+        .collect();
+    for _ in 0..steps {
+        let _ = scene.step();
+        for ((_, a, b), rest) in scene.springs().zip(&rests) {
+            let (pa, pb) = (scene.position(a).unwrap(), scene.position(b).unwrap());
+            let d = (pb[0].to_f64() - pa[0].to_f64()).hypot(pb[1].to_f64() - pa[1].to_f64());
+            let strain = (d - rest).abs() / rest;
+            if strain.is_nan() || strain >= 10.0 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// The topologies of the bounded checks and of the library's runs above: 21.
+fn safety_topologies() -> Vec<Topology> {
+    let mut tops = ci_topologies();
+    tops.extend([
+        Topology::rope(16, true, Masses::Equal),
+        Topology::rope(8, false, Masses::Alternating(100.0)),
+        Topology::mesh(4, 4, false, false),
+        Topology::mesh(4, 4, true, true),
+        Topology::collinear_star(4),
+    ]);
+    tops
+}
+
+/// The crate's scenes, in every backend and both steppers, every spring at its limit,
+/// stay bounded from a deformation of 10 %; and 120 random networks (mass ratios to 100)
+/// do, with one tuning at the smallest of their limits (Gauss-Seidel, which flutters
+/// only with mixed coefficients or larger mass ratios) and with every spring anywhere in
+/// its own limit square (Jacobi, the proven rule).
+#[test]
+fn every_backend_stays_bounded_at_the_crates_limits() {
+    fn all<S: stiffspring::Scalar>() -> usize {
+        let mut runs = 0;
+        for top in safety_topologies() {
+            for order in [Order::GaussSeidel, Order::Jacobi] {
+                assert!(
+                    bounded_in::<S>(&top, order, None, 0.1, 2000),
+                    "{} {} {}",
+                    S::NAME,
+                    top.name,
+                    name(order)
+                );
+                runs += 1;
+            }
+        }
+        let mut rng = Rng::seeded(120);
+        for _ in 0..120 {
+            let top = Topology::random(&mut rng, 100.0);
+            let m = top.springs.len();
+            let gs = library_limits(&top, Order::GaussSeidel)
+                .into_iter()
+                .fold(1.0, f64::min);
+            let uniform = vec![gs; m];
+            assert!(
+                bounded_in::<S>(
+                    &top,
+                    Order::GaussSeidel,
+                    Some((&uniform, &uniform)),
+                    0.1,
+                    1000
+                ),
+                "{} {top:?}",
+                S::NAME
+            );
+            let (ck, cd) = random_coefficients(&mut rng, &library_limits(&top, Order::Jacobi));
+            let (ck, cd): (Vec<f64>, Vec<f64>) = ck
+                .iter()
+                .zip(&cd)
+                .map(|(&k, &d)| {
+                    if k == 0.0 && d == 0.0 {
+                        (1e-3, 0.0)
+                    } else {
+                        (k, d)
+                    }
+                })
+                .unzip();
+            assert!(
+                bounded_in::<S>(&top, Order::Jacobi, Some((&ck, &cd)), 0.1, 1000),
+                "{} {top:?} {ck:?} {cd:?}",
+                S::NAME
+            );
+            runs += 2;
+        }
+        runs
+    }
+    let runs =
+        all::<f64>() + all::<f32>() + all::<stiffspring::I32F32>() + all::<stiffspring::I16F16>();
+    assert_eq!(runs, 4 * (21 * 2 + 240));
+}

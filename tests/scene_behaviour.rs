@@ -459,11 +459,12 @@ fn ropes_sharing_an_anchor_are_separate_islands() {
     assert_eq!(asleep(&both, &sides[0]), [false; 3]);
     assert_eq!(asleep(&both, &sides[1]), [false; 3]);
     assert_eq!(both.active(), (6, 6));
-    // The anchor's move reaches the ropes through their springs' damping this step,
-    // and the anchor is still again after it.
-    // (Its step velocity is the 0.01 it moved: 1.2 units per second.)
-    let v = both.velocity(anchor).unwrap();
-    assert!((v[0] - 1.2).abs() < 1e-5 && v[1] == 0.0, "{v:?}");
+    // The anchor's move reaches the ropes through their springs at once: their pull
+    // from the new position and their damping of its 0.01 (1.2 units per second) are in
+    // the step velocity of the particle it holds. The anchor itself never moves on its
+    // own.
+    assert_eq!(both.velocity(anchor).unwrap(), [0.0, 0.0]);
+    assert!(both.velocity(sides[0][0]).unwrap()[0] > 0.0);
     let _ = both.step();
     assert_eq!(both.velocity(anchor).unwrap(), [0.0, 0.0]);
     assert_eq!(both.position(anchor).unwrap(), [0.01, 0.0]);

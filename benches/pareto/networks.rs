@@ -160,11 +160,14 @@ impl Net {
             net.add_spring(a, b, rest, self.coefficient, self.coefficient);
         }
         net.gravity = self.gravity;
+        // The scene's start: its springs' pull in the first step (the networks with a
+        // velocity have no gravity, so `set_velocity`'s step is the velocity's).
+        net.pull(self.dt());
         (0..self.steps)
             .map(|_| {
                 match stepper {
-                    Stepper::GaussSeidel => net.step_gauss_seidel(self.dt()),
-                    Stepper::Jacobi => net.step_jacobi(self.dt()),
+                    Stepper::GaussSeidel => net.step_gauss_seidel_kept(self.dt()),
+                    Stepper::Jacobi => net.step_jacobi_kept(self.dt()),
                 }
                 net.particles.iter().map(|p| p.pos).collect()
             })

@@ -50,8 +50,8 @@ fn rope_error<S: Scalar, L: LengthKernel<S>>(stepper: Stepper) -> f64 {
     for _ in 0..rope_scene::STEPS {
         let _ = rope.step();
         match stepper {
-            Stepper::GaussSeidel => net.step_gauss_seidel(rope_scene::DT),
-            Stepper::Jacobi => net.step_jacobi(rope_scene::DT),
+            Stepper::GaussSeidel => net.step_gauss_seidel_kept(rope_scene::DT),
+            Stepper::Jacobi => net.step_jacobi_kept(rope_scene::DT),
         }
         for (i, id) in ids.iter().enumerate() {
             let p = rope.position(*id).expect("live");
@@ -240,8 +240,8 @@ fn jelly_error<S: Scalar>(stepper: Stepper) -> f64 {
     for _ in 0..JELLY_STEPS {
         let _ = jelly.step();
         match stepper {
-            Stepper::GaussSeidel => net.step_gauss_seidel(DT),
-            Stepper::Jacobi => net.step_jacobi(DT),
+            Stepper::GaussSeidel => net.step_gauss_seidel_kept(DT),
+            Stepper::Jacobi => net.step_jacobi_kept(DT),
         }
         for (i, id) in ids.iter().enumerate() {
             let p = jelly.position(*id).expect("live");

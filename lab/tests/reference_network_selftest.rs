@@ -889,3 +889,78 @@ fn scene_builders_are_at_rest_and_shaped_as_documented() {
     assert_eq!(spin.angular_momentum_2d(), 2.0 * 4.0 * 1.5 * 1.5 / 2.0);
     assert_eq!(spin.relative_velocity(0), 0.0);
 }
+
+// ---------------------------------------------------------------------------
+// The kept order
+// ---------------------------------------------------------------------------
+
+/// Without gravity and drag, from rest, the kept order started from the springs' pull
+/// is the impulse order with the step's boundary moved: the same positions after every
+/// step, for Jacobi (from rest its first forces are the pull alone) and for undamped
+/// Gauss-Seidel (with damping its first in-place pass also damps the earlier springs'
+/// pull).
+#[test]
+fn kept_order_is_the_same_motion_without_gravity() {
+    let mut rng = Rng::seeded(11);
+    let dt = 0.01;
+    for jacobi in [false, true] {
+        let mut mesh = mesh_2d(3, 3, 1.0, true, 0.2, if jacobi { 0.3 } else { 0.0 });
+        for p in mesh.particles.iter_mut() {
+            p.pos = [p.pos[0] + 0.2 * rng.unit(), p.pos[1] - 0.2 * rng.unit()];
+        }
+        let (mut old, mut kept) = (mesh.clone(), mesh.clone());
+        kept.pull(dt);
+        for step in 0..500 {
+            if jacobi {
+                old.step_jacobi(dt);
+                kept.step_jacobi_kept(dt);
+            } else {
+                old.step_gauss_seidel(dt);
+                kept.step_gauss_seidel_kept(dt);
+            }
+            for (a, b) in old.particles.iter().zip(&kept.particles) {
+                for k in 0..2 {
+                    assert_close(&format!("step {step}"), b.pos[k], a.pos[k], 1e-12);
+                }
+            }
+        }
+    }
+}
+
+/// The kept order's drag is the exact decay: a free particle flung at `v` is at
+/// `v·(1 − e^{−c·t})/c` after `t` once its first step moved it by `v·(1 − e^{−c·dt})/c`.
+#[test]
+fn kept_order_drag_is_the_exact_decay() {
+    let (dt, c, v) = (0.02, 3.0, 2.0);
+    let mut net = Network::<1>::new();
+    net.drag = c;
+    let first = v * (1.0 - (-c * dt).exp()) / c;
+    net.add_particle([0.0], [first / dt], 1.0);
+    for n in 1..=200 {
+        net.step_gauss_seidel_kept(dt);
+        let t = n as f64 * dt;
+        assert_close(
+            "x",
+            net.particles[0].pos[0],
+            v * (1.0 - (-c * t).exp()) / c,
+            1e-12,
+        );
+    }
+}
+
+/// With gravity, a spring hanging in the kept order rests at the static extension
+/// `m·g/k` (the damping never sees gravity), `k = C_k·m/dt²` for a pinned spring.
+#[test]
+fn kept_order_hangs_at_the_static_weight() {
+    let (dt, ck, cd) = (0.01, 0.2, 0.5);
+    let mut net = Network::<1>::new();
+    net.gravity = [-9.81];
+    let pin = net.add_pinned([0.0]);
+    let body = net.add_particle([-1.0], [0.0], 2.0);
+    net.add_spring(pin, body, 1.0, ck, cd);
+    for _ in 0..5000 {
+        net.step_gauss_seidel_kept(dt);
+    }
+    let k = ck * 2.0 / (dt * dt);
+    assert_close("x", net.particles[body].pos[0], -1.0 - 2.0 * 9.81 / k, 1e-9);
+}

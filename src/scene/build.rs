@@ -212,8 +212,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             freed: None,
         };
         let factors = self.stiffening(sa, sb, &new.rest);
-        let (coefficients, clamped_self) =
-            self.checked(new.coefficients, self.share_count(sa, sb, &change), factors)?;
+        let (coefficients, clamped_self) = self.checked(
+            new.coefficients,
+            self.share_count(sa, sb, &change),
+            factors,
+            (sa, sb),
+        )?;
         let clamps = self.check_neighbours(&[sa, sb], &change)?;
         let gains = if clamped_self {
             self.gains_at(coefficients)?
@@ -269,8 +273,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         self.classify(slot);
         let clamped = usize::from(clamped_self) + clamps.len();
         for (i, gains) in clamps {
-            self.springs[i as usize].gains = gains;
+            self.retune(i as usize, gains);
         }
+        self.apply_pull(slot, true);
         self.wake_around(sa);
         self.wake_around(sb);
         self.rebuild();
@@ -310,9 +315,10 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             });
         }
         let gains = gains_of::<S>(tuning)?;
+        // P̃ of the kept start ũ = P̃·x (see `Scene::release`); 0 for raw coefficients.
         let release = match tuning.oscillator() {
-            Some(_) if tuning.retention() > 0.0 => tuning.start_weights().0 / tuning.retention(),
-            _ => 0.0,
+            Some(_) => tuning.start_weights().0,
+            None => 0.0,
         };
         Ok(NewSpring {
             rest: L::rest(rest_length),
@@ -417,7 +423,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         } else {
             L::stiffening(S::state_to_f64(S::norm(&d)) / length)
         };
-        let (coefficients, clamped_self) = self.checked(new.coefficients, degree, factors)?;
+        let (coefficients, clamped_self) =
+            self.checked(new.coefficients, degree, factors, (target, target))?;
         let clamps = self.check_neighbours(&[target], &change)?;
         let gains = if clamped_self {
             self.gains_at(coefficients)?
@@ -494,15 +501,14 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         let new = self.new_spring(L::rest_length(&rest), tuning)?;
         let degree = self.share_count(a, b, &Change::NONE);
         let factors = self.stiffening(a, b, &s.rest);
-        let (coefficients, clamped) = self.checked(new.coefficients, degree, factors)?;
+        let (coefficients, clamped) = self.checked(new.coefficients, degree, factors, (a, b))?;
         let gains = if clamped {
             self.gains_at(coefficients)?
         } else {
             new.gains
         };
-        let s = &mut self.springs[slot];
-        s.gains = gains;
-        s.release = new.release;
+        self.retune(slot, gains);
+        self.springs[slot].release = new.release;
         self.wake_around(a);
         self.wake_around(b);
         self.rebuild();
@@ -542,26 +548,37 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             freed: (self.particles[slot].inverse_mass == 0.0 && inverse > 0.0).then_some(slot),
         };
         let clamps = self.check_neighbours(&[slot], &change)?;
-        self.particles[slot].inverse_mass = inverse;
-        if inverse == 0.0 {
-            self.velocities[slot] = [S::STATE_ZERO; D];
-        }
-        for i in 0..self.springs.len() {
-            let s = &self.springs[i];
-            if s.kind != Kind::Dead && (s.a as usize == slot || s.b as usize == slot) {
-                self.classify(i);
+        // The springs' pulls change with their weights: off before, on after.
+        self.repulling(slot, |scene| {
+            scene.particles[slot].inverse_mass = inverse;
+            if inverse == 0.0 {
+                scene.velocities[slot] = [S::STATE_ZERO; D];
             }
-        }
-        for (i, gains) in clamps {
-            self.springs[i as usize].gains = gains;
-        }
+            for i in 0..scene.springs.len() {
+                let s = &scene.springs[i];
+                if s.kind != Kind::Dead && (s.a as usize == slot || s.b as usize == slot) {
+                    scene.classify(i);
+                }
+            }
+            for (i, gains) in clamps {
+                scene.springs[i as usize].gains = gains;
+            }
+        });
         self.wake_around(slot);
         self.rebuild();
         Ok(())
     }
 
+    /// Gives spring slot `i` new gains, moving its pull with them.
+    fn retune(&mut self, i: usize, gains: S::Gains) {
+        self.apply_pull(i, false);
+        self.springs[i].gains = gains;
+        self.apply_pull(i, true);
+    }
+
     /// Marks a spring dead, takes it off its ends' share counts and makes its id stale.
     fn kill_spring(&mut self, slot: usize) {
+        self.apply_pull(slot, false);
         let s = self.springs[slot];
         for p in [s.a as usize, s.b as usize] {
             self.particles[p].springs = self.particles[p].springs.saturating_sub(1);

@@ -22,7 +22,8 @@
 //! would not change any step velocity and is refused as
 //! [`Error::Unrepresentable`] instead of being silently ignored.
 
-use super::{ParticleId, Scene};
+use super::limits::Change;
+use super::{Kind, ParticleId, Scene};
 use crate::error::{Bound, Error, Parameter, Remedy, check};
 use crate::length::LengthKernel;
 use crate::math;
@@ -92,12 +93,11 @@ fn acts<S: Scalar>(d: f64) -> bool {
 }
 
 /// The step velocity that starts a particle with drag rate `c` on the trajectory of its
-/// velocity `v`: `u = v·(e^{c·dt} − 1)/c` (`v·dt` without drag). The step takes `d·u` off
-/// before it moves the particle, so its first displacement is `v·(1 − e^{−c·dt})/c`, the
-/// continuous one.
+/// velocity `v`: its first displacement, `u = v·(1 − e^{−c·dt})/c` (`v·dt` without
+/// drag), the continuous one; each step then keeps `e^{−c·dt}` of it.
 pub(crate) fn start_factor(rate: f64, dt: f64) -> f64 {
     if rate > 0.0 {
-        math::expm1(rate * dt) / rate
+        -math::expm1(-rate * dt) / rate
     } else {
         dt
     }
@@ -116,7 +116,11 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// # Errors
     ///
     /// [`Error::Stale`]; as [`SceneConfig::linear_damping`](super::SceneConfig::linear_damping)
-    /// for the rate, with [`Parameter::LinearDamping`]. Nothing changes then.
+    /// for the rate, with [`Parameter::LinearDamping`]; [`Error::OutOfRange`] when the
+    /// particle's only spring is undersampled (`C_k > 2`, a tuning beyond the article's
+    /// square that [`Scene::add_spring`] accepts for a lone spring) and the drag would
+    /// take it out of its stable region, with the largest rate that keeps it. Nothing
+    /// changes then.
     ///
     /// ```
     /// use stiffspring::scene::{Scene, SceneConfig};
@@ -164,6 +168,38 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     ) -> Result<(), Error> {
         let slot = self.slot(particle)?;
         let d = step_fraction::<S>(rate, self.config.dt, parameter)?;
+        // A lone spring on the particle (no other spring on either end) is held to Jury's
+        // region with the drag in its damping (`Scene::add_spring`): the drag may not
+        // take it out.
+        let mut least = 0.0f64;
+        for i in 0..self.springs.len() {
+            let s = self.springs[i];
+            let (a, b) = (s.a as usize, s.b as usize);
+            if s.kind == Kind::Dead
+                || (a != slot && b != slot)
+                || self.share_count(a, b, &Change::NONE) > 1
+            {
+                continue;
+            }
+            let (ka, kb) = self.stiffening(a, b, &s.rest);
+            let (ck, cd) = S::gains_to_f64(&s.gains);
+            // a·C_k + 2·(1 − r·(1 − b·C_d)) < 4 needs the smaller retention of the ends
+            // above this (`Scene::add_spring` checks the same).
+            // With `b·C_d ≥ 1` a drag only lowers the damping's excess over 1: no bound.
+            let keep = 1.0 - kb * cd;
+            if keep > 0.0 {
+                least = least.max((ka * ck - 2.0) / (2.0 * keep));
+            }
+        }
+        if least > 0.0 && 1.0 - d <= least {
+            return Err(Error::OutOfRange {
+                parameter,
+                value: rate,
+                bound: Bound::Below {
+                    max: -libm::log(least) / self.config.dt,
+                },
+            });
+        }
         self.particles[slot].damping = rate;
         self.drag[slot] = S::factor(d);
         self.reschedule();
@@ -248,8 +284,8 @@ mod tests {
     fn the_start_factor_is_the_first_step_of_the_decay() {
         let (c, dt) = (3.0, 0.01);
         let d = step_fraction::<f64>(c, dt, Parameter::LinearDamping).unwrap();
-        let first = (1.0 - d) * start_factor(c, dt);
-        assert!((first - (1.0 - (-c * dt).exp()) / c).abs() < 1e-16);
+        assert!((d / c - start_factor(c, dt)).abs() < 1e-18);
+        assert!((start_factor(c, dt) - (1.0 - (-c * dt).exp()) / c).abs() < 1e-16);
         assert_eq!(start_factor(0.0, dt), dt);
     }
 }

@@ -17,6 +17,11 @@ const MARGIN: f64 = 0.75;
 /// particle carries `springs_per_particle` springs (counting itself), with the given
 /// stepper.
 ///
+/// For `n ≤ 1` (the spring is alone on its free ends) this is 1, the article's square;
+/// a scene accepts such a spring further, anywhere in the single spring's exact stable
+/// region (Jury's `C_k + 2·C_d < 4`, with its ends' drag in `C_d`), as a
+/// [`SpringValue`](crate::SpringValue) does.
+///
 /// A single spring is stable for any `(C_k, C_d)` in `[0, 1]²`. Springs that share a
 /// particle compete: each corrects its own extension and disturbs its neighbours'. The
 /// article's rule of thumb (eq. 29) is `C_max ≈ 1/(n + 1)`, with `n` the largest number of
@@ -195,7 +200,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         coefficients: (f64, f64),
         degree: u16,
         (a, b): (f64, f64),
+        (end_a, end_b): (usize, usize),
     ) -> Result<((f64, f64), bool), Error> {
+        if degree <= 1 {
+            let retention = self.retention(end_a).min(self.retention(end_b));
+            return self.checked_alone(coefficients, (a, b), retention);
+        }
         let limit = network_limit(degree as usize, self.config.stepper);
         let (limit_k, limit_d) = (limit / a, limit / b);
         let (ck, cd) = coefficients;
@@ -220,6 +230,43 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         }
     }
 
+    /// A spring whose free ends carry no other spring: a single spring in the relative
+    /// coordinate of its ends, stable exactly in Jury's region as a
+    /// [`SpringValue`](crate::SpringValue) is (`C_k + 2·C_d < 4`), with the drag's
+    /// retention `r` of its ends folded into the damping (`1 − C_d → r·(1 − C_d)`) and
+    /// the length kernel's stiffening `(a, b)`.
+    fn checked_alone(
+        &self,
+        (ck, cd): (f64, f64),
+        (a, b): (f64, f64),
+        retention: f64,
+    ) -> Result<((f64, f64), bool), Error> {
+        let damping = 1.0 - retention * (1.0 - b * cd);
+        // The largest C_k (before the stiffening) with a·C_k + 2·C_d' < 4, a hair inside.
+        let limit = (4.0 - 2.0 * damping) / a * (1.0 - 1e-9);
+        if ck < limit {
+            return Ok(((ck, cd), false));
+        }
+        match self.config.policy {
+            LimitPolicy::Reject => Err(Error::ExceedsNetworkLimit {
+                coefficient: ck,
+                limit,
+            }),
+            LimitPolicy::Clamp => Ok(((limit, cd), true)),
+        }
+    }
+
+    /// The fraction `r = e^{−c·dt}` of its velocity a particle keeps from its drag per
+    /// step (1 for a pinned particle, or none).
+    pub(crate) fn retention(&self, slot: usize) -> f64 {
+        let p = &self.particles[slot];
+        if p.inverse_mass == 0.0 || p.damping == 0.0 {
+            1.0
+        } else {
+            crate::math::exp(-p.damping * self.config.dt)
+        }
+    }
+
     /// Checks every live spring touching `slots` against its limit under `change`, and
     /// returns the clamped gains to apply once the change commits (empty under
     /// [`LimitPolicy::Reject`], which fails instead).
@@ -236,7 +283,8 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             }
             let degree = self.share_count(a, b, change);
             let factors = self.stiffening(a, b, &s.rest);
-            let ((ck, cd), clamped) = self.checked(S::gains_to_f64(&s.gains), degree, factors)?;
+            let ((ck, cd), clamped) =
+                self.checked(S::gains_to_f64(&s.gains), degree, factors, (a, b))?;
             if clamped {
                 // At most K springs: always room.
                 let _ = clamps.push((i as u16, self.gains_at((ck, cd))?));

@@ -19,16 +19,38 @@
 //!
 //! # One step, in order
 //!
-//! 1. **Drag and gravity**: every awake free particle's step velocity `u` loses `d·u` to
-//!    its drag ([`SceneConfig::linear_damping`], `d = 1 − e^{−c·dt}`) and gains `g·dt²`.
-//! 2. **Springs**, through the crate's two-body kernel ([`kernel`](crate::kernel)):
+//! 1. **Move**: every awake free particle moves by its kept step velocity and gravity,
+//!    `u = ũ + g·dt²`, `x += u`; its drag ([`SceneConfig::linear_damping`],
+//!    `d = 1 − e^{−c·dt}`) then takes `d·u` off.
+//! 2. **Springs**, at the positions just reached, through the crate's two-body kernel
+//!    ([`kernel`](crate::kernel)), each damping its ends' motion and pulling them
+//!    toward its rest length for the next step:
 //!    - [`Stepper::GaussSeidel`]: the impulse form, spring by spring, in place;
 //!    - [`Stepper::Jacobi`]: the force form, every spring from the same state, summed.
-//! 3. **Positions**: every awake free particle moves by its step velocity.
-//! 4. **Anchors**: pinned particles moved this step forget their step velocity.
-//! 5. **Sleep**: an island whose particles all stayed below the sleep threshold long
-//!    enough stops being stepped; it costs nothing until something touches it (an
+//! 3. **Sleep**: an island whose particles all moved less than the sleep threshold for
+//!    long enough stops being stepped; it costs nothing until something touches it (an
 //!    impulse, a teleport, a velocity, a moved anchor, a new or retuned spring).
+//!
+//! # The kept step velocity
+//!
+//! What a scene keeps for each particle between steps is the step its next step moves it
+//! by (less gravity): what its last step left after the springs' damping and the drag,
+//! the `ũ = (1 − C_d)·u` of a [`SpringValue`](crate::SpringValue), plus the pull
+//! `−C_k·x` its springs have at the current positions. The springs run at the end of a
+//! step, so that a step never multiplies a large step velocity by `1 − C_d`: a heavily
+//! overdamped spring released at a low rate extrapolates one step back by `e^{2ζω·dt}`
+//! (10⁸ of its stretch for ζ = 10 at 12 Hz and 60 Hz), and [`Scene::release`] keeps
+//! `P̃·x` instead, below the stretch, as a value does. This is the article's step moved
+//! by half a step: from rest, without gravity, the same motion as applying the springs
+//! first (`lab/tests/reference_network_selftest.rs`); with gravity, the damping no
+//! longer sees it, and a hanging spring rests at its static weight.
+//!
+//! Set-up calls keep it so: a moved particle or anchor, a new, removed or retuned
+//! spring, a new mass take the old pull off and put the new one on, so the next step
+//! moves every particle by what its springs pull now (a dragged anchor's particle
+//! follows it in the very next step, its springs' damping acting on the anchor's
+//! motion). [`Scene::velocity`] reads the next step over `dt`, and
+//! [`Scene::set_velocity`] sets it.
 //!
 //! [`Scene::step`] reports what moved and what fell asleep ([`SceneMotion`]).
 //!
@@ -40,10 +62,14 @@
 //!
 //! # Springs that share particles
 //!
-//! One spring is stable for any coefficients in `[0, 1]²`; springs that share particles
-//! are not. When a spring is added or retuned, the scene checks it and its neighbours
-//! against [`network_limit`] for the number of springs on their particles, and rejects or
-//! clamps by its [`LimitPolicy`].
+//! A lone spring (no other spring on either of its free ends: a body on a spring to a
+//! pin, a drag handle, two free bodies) is one spring in the relative coordinate of its
+//! ends, accepted wherever a [`SpringValue`](crate::SpringValue) accepts its tuning
+//! (Jury's region `C_k + 2·C_d < 4`, the drag of its ends folded into `C_d`): an
+//! undersampled exact tuning, 12 Hz undamped at 60 Hz (`C_k = 1.38`), runs as it does in a
+//! value. Springs that share particles are not stable that far. When a spring is added or
+//! retuned, the scene checks it and its neighbours against [`network_limit`] for the
+//! number of springs on their particles, and rejects or clamps by its [`LimitPolicy`].
 //!
 //! ```
 //! use stiffspring::scene::{Scene, SceneConfig};
@@ -74,6 +100,7 @@ mod events;
 mod ids;
 mod limits;
 mod motion;
+mod pull;
 mod schedule;
 mod step;
 
@@ -215,8 +242,6 @@ where
     pub(crate) two_sided_points: Vec<u16, K>,
     /// Roots of awake islands (for the sleep check).
     pub(crate) awake_islands: Vec<u16, P>,
-    /// Pinned particles moved since the last step (their step velocity is reset after).
-    pub(crate) moved_anchors: Vec<u16, P>,
     /// Jacobi's per-particle sums.
     pub(crate) accumulated: Vec<[S::State; D], P>,
     /// `g·dt²` in the state format; `None` when it is zero, decided at set-up so that a
@@ -286,7 +311,6 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             one_sided_points: Vec::new(),
             two_sided_points: Vec::new(),
             awake_islands: Vec::new(),
-            moved_anchors: Vec::new(),
             accumulated: Vec::new(),
             gravity_step,
             sleep_step_velocity,
@@ -362,7 +386,13 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         d
     }
 
-    /// A particle's velocity in units per second.
+    /// A particle's velocity in units per second: the distance its next step moves it,
+    /// over `dt` (with a drag, over the step of the decay, so that a free particle reads
+    /// its continuous velocity `v·e^{−c·t}` exactly; see
+    /// [`Scene::set_linear_damping`]). It includes what the springs pull into that step
+    /// (a scene applies its springs at the end of a step, see the [module
+    /// docs](self#the-kept-step-velocity)), so a particle at rest reads 0, and a pinned
+    /// particle always reads 0.
     ///
     /// # Errors
     ///
@@ -378,9 +408,21 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// ```
     pub fn velocity(&self, particle: ParticleId) -> Result<[S; D], Error> {
         let slot = self.slot(particle)?;
-        let u = self.velocities[slot];
+        let u = self.next_step(slot);
         let per_second = S::factor(1.0 / self.start_factor(slot));
         Ok(u.map(|u| S::narrow(S::scale(u, per_second))))
+    }
+
+    /// The step the next step moves `slot` by: its kept step velocity and gravity (0 for
+    /// a pinned particle).
+    pub(crate) fn next_step(&self, slot: usize) -> [S::State; D] {
+        let mut u = self.velocities[slot];
+        if let (Some(g), true) = (self.gravity_step, self.particles[slot].inverse_mass > 0.0) {
+            for k in 0..D {
+                u[k] = S::state_add(u[k], g[k]);
+            }
+        }
+        u
     }
 
     /// The step velocity per unit of velocity of a particle (`dt` without drag; see
@@ -593,14 +635,12 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// ```
     pub fn momentum(&self) -> [f64; D] {
         let mut total = [0.0; D];
-        for (slot, (p, u)) in self
-            .particles
-            .iter()
-            .zip(self.velocities.iter())
-            .enumerate()
-        {
+        for (slot, p) in self.particles.iter().enumerate() {
             if p.live && p.inverse_mass > 0.0 {
-                let per_step = p.inverse_mass * self.start_factor(slot);
+                let (u, per_step) = (
+                    self.next_step(slot),
+                    p.inverse_mass * self.start_factor(slot),
+                );
                 for k in 0..D {
                     total[k] += S::state_to_f64(u[k]) / per_step;
                 }

@@ -162,44 +162,16 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     pub fn step(&mut self) -> SceneMotion {
         self.fell_asleep.clear();
         let woke = core::mem::take(&mut self.woken);
-        self.apply_drag_and_gravity();
+        self.move_particles();
         match self.config.stepper {
             Stepper::GaussSeidel => self.solve_in_place(),
             Stepper::Jacobi => self.solve_from_one_state(),
         }
-        self.integrate_positions();
-        self.settle_anchors();
         self.update_sleep();
         SceneMotion {
             moving: self.free.len(),
             fell_asleep: self.fell_asleep.len(),
             woke,
-        }
-    }
-
-    /// Stage 1: the drag, `u −= d·u` (see [`damping`](super::damping)), then gravity,
-    /// `u += g·dt²`, for every awake free particle. Each part is skipped when no particle
-    /// has it (decided at set-up).
-    fn apply_drag_and_gravity(&mut self) {
-        let n = self.velocities.len();
-        let velocities = &mut self.velocities[..n];
-        if self.dragged {
-            let drag = &self.drag[..n];
-            for &p in self.free.iter() {
-                let (u, d) = (&mut velocities[p as usize], drag[p as usize]);
-                for k in 0..D {
-                    u[k] = S::state_sub(u[k], S::scale(u[k], d));
-                }
-            }
-        }
-        let Some(g) = self.gravity_step else {
-            return;
-        };
-        for &p in self.free.iter() {
-            let u = &mut velocities[p as usize];
-            for k in 0..D {
-                u[k] = S::state_add(u[k], g[k]);
-            }
         }
     }
 
@@ -295,7 +267,9 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         }
     }
 
-    /// Stage 3: `x += u` for every awake free particle, within the network bound.
+    /// Stage 1: every awake free particle moves by its step velocity and gravity,
+    /// `u = ũ + g·dt²`, `x += u`, within the network bound; then the drag takes `d·u` off
+    /// (see [`damping`](super::damping)), leaving the velocity the springs damp next.
     ///
     /// The bound is the safety net of floating point: a network that the limit policy
     /// let through but that is unstable anyway (a length kernel far outside its range, a
@@ -303,60 +277,48 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
     /// overflowing, and a NaN made from an overflow inside the step is reset to 0, so no
     /// position or velocity ever leaves `step()` infinite or NaN. Free in fixed point.
     ///
-    /// It also takes stage 5's census while each final velocity is at hand: a particle
-    /// faster than the sleep threshold marks its island as moving (nothing after this
-    /// stage changes a free particle's velocity, and one pass over the particles is
-    /// cheaper than two).
-    fn integrate_positions(&mut self) {
+    /// It also takes stage 3's census while each step is at hand: a particle that moved
+    /// by more than the sleep threshold marks its island as moving.
+    fn move_particles(&mut self) {
         let bound = S::state_from_f64(S::NETWORK_MAX);
         let census = self.sleep_steps != 0;
         let limit = self.sleep_step_velocity;
+        let (gravity, dragged) = (self.gravity_step, self.dragged);
         let positions: &mut [[S::State; D]] = &mut self.positions;
         let n = positions.len();
         let remainders = &mut self.remainders[..n];
         let velocities = &mut self.velocities[..n];
-        // Two loops rather than a test per particle: a scene without sleep pays nothing
-        // for the census.
-        if census {
-            let particles = &self.particles[..n];
-            let islands = &mut self.islands;
-            for &p in self.free.iter() {
-                let p = p as usize;
-                let u = &mut velocities[p];
-                integrate::<S, D>(&mut positions[p], &mut remainders[p], u, bound);
-                if u.iter().any(|c| !S::within(*c, limit)) {
-                    islands[particles[p].island as usize].moving = true;
+        let drag = &self.drag[..n];
+        let particles = &self.particles[..n];
+        let islands = &mut self.islands;
+        for &p in self.free.iter() {
+            let p = p as usize;
+            let u = &mut velocities[p];
+            if let Some(g) = gravity {
+                for k in 0..D {
+                    u[k] = S::state_add(u[k], g[k]);
                 }
             }
-        } else {
-            for &p in self.free.iter() {
-                let p = p as usize;
-                integrate::<S, D>(
-                    &mut positions[p],
-                    &mut remainders[p],
-                    &mut velocities[p],
-                    bound,
-                );
+            integrate::<S, D>(&mut positions[p], &mut remainders[p], u, bound);
+            if census && u.iter().any(|c| !S::within(*c, limit)) {
+                islands[particles[p].island as usize].moving = true;
+            }
+            if dragged {
+                let d = drag[p];
+                for k in 0..D {
+                    u[k] = S::state_sub(u[k], S::scale(u[k], d));
+                }
             }
         }
     }
 
-    /// Stage 4: anchors moved by `set_position` carried their motion into this step's
-    /// damping; they are still again.
-    fn settle_anchors(&mut self) {
-        for &p in self.moved_anchors.iter() {
-            self.velocities[p as usize] = [S::STATE_ZERO; D];
-        }
-        self.moved_anchors.clear();
-    }
-
-    /// Stage 5: islands whose particles all stayed below the threshold for the sleep
+    /// Stage 3: islands whose particles all stayed below the threshold for the sleep
     /// time fall asleep: velocities zeroed, off the schedule.
     fn update_sleep(&mut self) {
         if self.sleep_steps == 0 {
             return;
         }
-        // Which islands moved was marked in stage 3.
+        // Which islands moved was marked in stage 1.
         let mut fell_asleep = false;
         for &root in self.awake_islands.iter() {
             let island = &mut self.islands[root as usize];
@@ -371,10 +333,19 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             }
         }
         if fell_asleep {
+            // At rest: the next step moves nothing (`u + g·dt² = 0`), which at an
+            // equilibrium is what the springs pull anyway, so the island wakes where it
+            // fell asleep, without a jolt.
+            let mut still = [S::STATE_ZERO; D];
+            if let Some(g) = self.gravity_step {
+                for k in 0..D {
+                    still[k] = S::state_sub(S::STATE_ZERO, g[k]);
+                }
+            }
             for &p in self.free.iter() {
                 let island = self.particles[p as usize].island as usize;
                 if !self.islands[island].awake {
-                    self.velocities[p as usize] = [S::STATE_ZERO; D];
+                    self.velocities[p as usize] = still;
                     // Capacity P: always room.
                     let _ = self.fell_asleep.push(p);
                 }

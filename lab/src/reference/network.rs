@@ -102,6 +102,9 @@ pub struct Network<const D: usize> {
     pub particles: Vec<Particle<D>>,
     pub springs: Vec<Spring>,
     pub gravity: [f64; D],
+    /// A drag on every non-pinned particle's velocity, `dv/dt = −drag·v` (per second),
+    /// applied by the kept-order steppers only (zero by default).
+    pub drag: f64,
 }
 
 impl<const D: usize> Default for Network<D> {
@@ -118,6 +121,7 @@ impl<const D: usize> Network<D> {
             particles: Vec::new(),
             springs: Vec::new(),
             gravity: [0.0; D],
+            drag: 0.0,
         }
     }
 
@@ -240,6 +244,12 @@ impl<const D: usize> Network<D> {
     /// updated in place; then `x += v·dt` for all particles.
     pub fn step_gauss_seidel(&mut self, dt: f64) {
         self.apply_gravity(dt);
+        self.impulses_in_place(dt);
+        self.drift(dt);
+    }
+
+    /// Each spring's corrected eq. 27 impulse, in order, in place.
+    fn impulses_in_place(&mut self, dt: f64) {
         for s in 0..self.springs.len() {
             let Some((n, len, ma, mb)) = self.active(s) else {
                 continue;
@@ -260,7 +270,6 @@ impl<const D: usize> Network<D> {
                 }
             }
         }
-        self.drift(dt);
     }
 
     /// Jacobi force step: gravity; then every spring's force of eq. 21/16,
@@ -270,6 +279,13 @@ impl<const D: usize> Network<D> {
     /// `x += v·dt`.
     pub fn step_jacobi(&mut self, dt: f64) {
         self.apply_gravity(dt);
+        self.forces_from_one_state(dt);
+        self.drift(dt);
+    }
+
+    /// Every spring's eq. 21 force from the same state, summed per particle, applied as
+    /// `v += F/m·dt`.
+    fn forces_from_one_state(&mut self, dt: f64) {
         let mut force = vec![[0.0; D]; self.particles.len()];
         for s in 0..self.springs.len() {
             let Some((n, len, ma, mb)) = self.active(s) else {
@@ -295,7 +311,75 @@ impl<const D: usize> Network<D> {
                 *v += fk / p.mass * dt; // eq. 3 / 8: v += (f/m)·dt
             }
         }
+    }
+
+    // -- The kept order --
+    //
+    // The library's scenes keep, between steps, the velocity the next drift moves a
+    // particle by: the springs act at the END of a step, at the positions it reached,
+    // and what they leave (damped, and already pulled by their stiffness) is kept. The
+    // steppers below run that order, written from the same equations:
+    //
+    //     v += g·dt;  x += v·dt;  v *= e^{−drag·dt};  springs (eq. 27 / eq. 21) on v
+    //
+    // A start is the velocities plus `pull` (each spring's stiffness impulse at the
+    // start positions; the library's scenes start so). From rest, and without gravity or
+    // drag, that is the same motion as `step_jacobi` from rest, and as undamped
+    // `step_gauss_seidel`, because each stiffness impulse depends only on positions (the
+    // self-test `kept_order_is_the_same_motion_without_gravity`); otherwise the two
+    // differ in their first step by the damping of the start velocity (and, in place, of
+    // the earlier springs' pull). With gravity, here the damping
+    // never sees it: a hanging spring rests at the static weight/k.
+
+    /// `v *= e^{−drag·dt}` for every non-pinned particle.
+    fn apply_drag(&mut self, dt: f64) {
+        let keep = (-self.drag * dt).exp();
+        for p in self.particles.iter_mut().filter(|p| !p.is_pinned()) {
+            for v in p.vel.iter_mut() {
+                *v *= keep;
+            }
+        }
+    }
+
+    /// Adds every spring's stiffness impulse at the current positions,
+    /// `j = −(m_red/dt)·C_k·x` (the damping term left out), to its ends' velocities: the
+    /// pull a kept-order step starts from.
+    pub fn pull(&mut self, dt: f64) {
+        for s in 0..self.springs.len() {
+            let Some((n, len, ma, mb)) = self.active(s) else {
+                continue;
+            };
+            let Spring { a, b, rest, ck, .. } = self.springs[s];
+            let j = -(reduced_mass(ma, mb) / dt) * ck * (len - rest); // eq. 27, stiffness
+            if ma.is_finite() {
+                for (va, nk) in self.particles[a].vel.iter_mut().zip(n) {
+                    *va -= j * nk / ma;
+                }
+            }
+            if mb.is_finite() {
+                for (vb, nk) in self.particles[b].vel.iter_mut().zip(n) {
+                    *vb += j * nk / mb;
+                }
+            }
+        }
+    }
+
+    /// The kept order with the Gauss-Seidel impulses: gravity, drift, drag, then each
+    /// spring's corrected eq. 27 impulse in order, in place, at the new positions.
+    pub fn step_gauss_seidel_kept(&mut self, dt: f64) {
+        self.apply_gravity(dt);
         self.drift(dt);
+        self.apply_drag(dt);
+        self.impulses_in_place(dt);
+    }
+
+    /// The kept order with the Jacobi forces: gravity, drift, drag, then every spring's
+    /// eq. 21 force from the same state at the new positions, summed, applied.
+    pub fn step_jacobi_kept(&mut self, dt: f64) {
+        self.apply_gravity(dt);
+        self.drift(dt);
+        self.apply_drag(dt);
+        self.forces_from_one_state(dt);
     }
 
     // -- Invariants (pinned particles are external agents and are left out) --
@@ -494,6 +578,9 @@ pub struct AngularSpring {
 pub struct AngularNetwork {
     pub bodies: Vec<Body>,
     pub springs: Vec<AngularSpring>,
+    /// A drag on every non-pinned body's angular velocity, `dω/dt = −drag·ω` (per
+    /// second), applied by the kept-order steppers only.
+    pub drag: f64,
 }
 
 impl AngularNetwork {
@@ -557,6 +644,12 @@ impl AngularNetwork {
     /// `j = -(I_red/dt)·C_k·θ - I_red·C_d·ω`, `+j` on b, `-j` on a, in place;
     /// then `angle += omega·dt`.
     pub fn step_gauss_seidel(&mut self, dt: f64) {
+        self.impulses_in_place(dt);
+        self.drift(dt);
+    }
+
+    /// Each spring's corrected eq. 28 impulse, in order, in place.
+    fn impulses_in_place(&mut self, dt: f64) {
         for s in 0..self.springs.len() {
             let i_red = self.reduced_inertia(s); // eq. 23
             if i_red.is_infinite() {
@@ -573,13 +666,18 @@ impl AngularNetwork {
                 self.bodies[b].omega += j / self.bodies[b].inertia;
             }
         }
-        self.drift(dt);
     }
 
     /// Jacobi: every spring's torque of eq. 26 (`k_max`, `d_max` of eq. 24,
     /// 25) from the same state, summed per body; then
     /// `omega += τ/I·dt`, `angle += omega·dt`.
     pub fn step_jacobi(&mut self, dt: f64) {
+        self.torques_from_one_state(dt);
+        self.drift(dt);
+    }
+
+    /// Every spring's eq. 26 torque from the same state, summed, applied.
+    fn torques_from_one_state(&mut self, dt: f64) {
         let mut torque = vec![0.0; self.bodies.len()];
         for s in 0..self.springs.len() {
             let i_red = self.reduced_inertia(s); // eq. 23
@@ -598,7 +696,48 @@ impl AngularNetwork {
                 body.omega += t / body.inertia * dt; // angular eq. 8
             }
         }
+    }
+
+    /// The kept order (see [`Network::step_gauss_seidel_kept`]): drift, drag, then each
+    /// spring's impulse in order, in place, at the new angles.
+    pub fn step_gauss_seidel_kept(&mut self, dt: f64) {
         self.drift(dt);
+        self.apply_drag(dt);
+        self.impulses_in_place(dt);
+    }
+
+    /// The kept order with the Jacobi torques.
+    pub fn step_jacobi_kept(&mut self, dt: f64) {
+        self.drift(dt);
+        self.apply_drag(dt);
+        self.torques_from_one_state(dt);
+    }
+
+    /// `ω *= e^{−drag·dt}` for every non-pinned body.
+    fn apply_drag(&mut self, dt: f64) {
+        let keep = (-self.drag * dt).exp();
+        for b in self.bodies.iter_mut().filter(|b| !b.is_pinned()) {
+            b.omega *= keep;
+        }
+    }
+
+    /// Adds every spring's stiffness impulse `j = −(I_red/dt)·C_k·θ` at the current
+    /// angles to its ends' angular velocities: the pull a kept-order step starts from.
+    pub fn pull(&mut self, dt: f64) {
+        for s in 0..self.springs.len() {
+            let i_red = self.reduced_inertia(s); // eq. 23
+            if i_red.is_infinite() {
+                continue;
+            }
+            let AngularSpring { a, b, ck, .. } = self.springs[s];
+            let j = -(i_red / dt) * ck * self.displacement(s); // eq. 28, stiffness
+            if !self.bodies[a].is_pinned() {
+                self.bodies[a].omega -= j / self.bodies[a].inertia;
+            }
+            if !self.bodies[b].is_pinned() {
+                self.bodies[b].omega += j / self.bodies[b].inertia;
+            }
+        }
     }
 
     /// `Σ I·ω` over the non-pinned bodies.
