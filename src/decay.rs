@@ -420,6 +420,15 @@ impl<S: Scalar, const D: usize> Decay<S, D> {
         self.at_rest
     }
 
+    /// Component `i`'s position and velocity in `f64`, read from the state (finer than a
+    /// position in fixed point, and the sum not rounded in floats): what a hand-over to
+    /// another motion continues from.
+    pub(crate) fn state_f64(&self, i: usize) -> (f64, f64) {
+        let x = self.rest[i].to_f64() + S::state_to_f64(self.offset[i]);
+        let scale = self.friction.rate() / self.friction.damping(self.dt);
+        (x, S::state_to_f64(self.kept[i]) * scale)
+    }
+
     /// The position of component `i` in the state format.
     fn position_state(&self, i: usize) -> S::State {
         S::state_add(self.rest[i].widen(), self.offset[i])

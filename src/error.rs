@@ -91,6 +91,8 @@ pub enum Parameter {
     SnapSpacing,
     /// A rubber band's dimension (the viewport it stretches over).
     RubberBand,
+    /// Snap points given as a slice (they must be finite and in ascending order).
+    SnapPoints,
     /// A scene's linear damping rate `c` (per second: a free particle's velocity decays
     /// as `e^{−c·t}`).
     LinearDamping,

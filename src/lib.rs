@@ -43,6 +43,9 @@
 //!   settled.
 //! - [`Decay`], [`Friction`]: a value thrown without a target, slowed by friction as the
 //!   platforms give it, with its resting point known at release.
+//! - [`Scroll`]: a scroll offset thrown and dragged by a finger or stepped by a knob,
+//!   within [`Bounds`] (a [`RubberBand`] past the ends, a spring back), resting on
+//!   [`Snap`] points.
 //! - [`Error`]: what set-up can reject, with the parameter, its value and the bound.
 //!   Stepping never fails.
 //!
@@ -65,6 +68,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod batch;
+mod bounds;
 mod decay;
 mod error;
 mod friction;
@@ -75,20 +79,27 @@ pub mod length;
 mod math;
 mod motion;
 mod rest;
+mod rubber_band;
 pub mod scalar;
 pub mod scene;
+mod scroll;
+mod snap;
 mod start;
 mod tuning;
 mod value;
 
 pub use batch::{BatchIndex, BatchMotion, SpringBatch};
+pub use bounds::Bounds;
 pub use decay::Decay;
 pub use error::{Bound, Error, Parameter, Remedy};
 pub use friction::Friction;
 pub use knob::{Knob, KnobConfig, KnobOutput};
 pub use motion::Motion;
 pub use rest::RestThreshold;
+pub use rubber_band::RubberBand;
 pub use scalar::Scalar;
+pub use scroll::{Scroll, ScrollPhase};
+pub use snap::Snap;
 pub use tuning::{Oscillator, Tuning, presets};
 pub use value::SpringValue;
 

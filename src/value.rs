@@ -211,6 +211,20 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         (offset, velocity)
     }
 
+    /// Puts the value at `offset` from `target` with `velocity` (`f64`, rounded once to the
+    /// state and the velocity formats, saturated), awake: a hand-over from another motion
+    /// that keeps the offset finer than a position.
+    pub(crate) fn start_at(&mut self, target: [S; D], offset: [f64; D], velocity: [f64; D]) {
+        self.target = target;
+        for i in 0..D {
+            let x = self.start.clamp(S::state_from_f64(offset[i]));
+            let v = saturate(S::from_f64(velocity[i])).unwrap_or(S::ZERO);
+            self.offset[i] = x;
+            self.step_velocity[i] = self.start.clamp(self.start.step_velocity_unchecked(x, v));
+        }
+        self.at_rest = false;
+    }
+
     /// Moves the value to `position` at once (its target stays), keeping its velocity.
     ///
     /// NaN is ignored; out-of-range input saturates, as for [`SpringValue::set_target`].

@@ -19,9 +19,9 @@ use stiffspring::scene::{
     SpringId, Stepper, WrappedAngle,
 };
 use stiffspring::{
-    BatchIndex, BatchMotion, Bound, Decay, Error, Friction, I16F16, I32F32, Knob, KnobConfig,
-    KnobOutput, Motion, Oscillator, Parameter, Remedy, RestThreshold, SpringBatch, SpringValue,
-    Tuning,
+    BatchIndex, BatchMotion, Bound, Bounds, Decay, Error, Friction, I16F16, I32F32, Knob,
+    KnobConfig, KnobOutput, Motion, Oscillator, Parameter, Remedy, RestThreshold, RubberBand,
+    Scroll, ScrollPhase, Snap, SpringBatch, SpringValue, Tuning,
 };
 
 /// Compiles only for `T: defmt::Format`.
@@ -62,6 +62,13 @@ const _: () = {
     is_format::<Friction>();
     is_format::<Decay<f32, 2>>();
     is_format::<Decay<I16F16, 1>>();
+    // Scrolls.
+    is_format::<Bounds<f32>>();
+    is_format::<Snap<'static, I16F16>>();
+    is_format::<RubberBand>();
+    is_format::<Scroll<'static, f32>>();
+    is_format::<Scroll<'static, I16F16>>();
+    is_format::<ScrollPhase>();
     // The kernel and the backends' formats.
     in_every_backend!(BodyWeights, LinearisedRest);
     is_format::<FloatGains<f32>>();

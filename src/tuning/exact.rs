@@ -265,6 +265,53 @@ impl Oscillator {
         }
     }
 
+    /// The offset and velocity `(x(t), v(t))` of the continuous oscillator `t ≥ 0` seconds
+    /// after it was at offset `offset` (from its rest position) with velocity `velocity`.
+    ///
+    /// The state-transition matrix of `ẍ + 2ζω·ẋ + ω²·x = 0`:
+    ///
+    /// ```text
+    /// x(t) = e^{−ζωt}·[(C + ζω·S)·x₀ + S·v₀]        v(t) = e^{−ζωt}·[−ω²·S·x₀ + (C − ζω·S)·v₀]
+    /// ```
+    ///
+    /// with `C = cos(ω_d·t)`, `S = sin(ω_d·t)/ω_d` (ζ < 1), `C = 1`, `S = t` (ζ = 1), and
+    /// `C = cosh(γt)`, `S = sinh(γt)/γ`, `γ = ω√(ζ² − 1)` (ζ > 1; the products with
+    /// `e^{−ζωt}` are formed as exponentials of `(±γ − ζω)·t`, which never overflow).
+    /// Set-up and hand-over arithmetic in `f64` (libm), not a step: a
+    /// [`Scroll`](crate::Scroll) uses it once per throw, to start its spring at the
+    /// instant the throw crossed a bound rather than at the next frame.
+    ///
+    /// ```
+    /// use stiffspring::Oscillator;
+    ///
+    /// // Undamped, 1 Hz: a quarter period after release from 1, it passes 0 at −2π.
+    /// let (x, v) = Oscillator::new(1.0, 0.0)?.state_after(1.0, 0.0, 0.25);
+    /// assert!(x.abs() < 1e-15 && (v + core::f64::consts::TAU).abs() < 1e-14);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn state_after(&self, offset: f64, velocity: f64, t: f64) -> (f64, f64) {
+        use libm::{cos, exp, sin, sqrt};
+        let (w, z) = (self.omega, self.zeta);
+        let a = z * w;
+        // (e^{−at}·C, e^{−at}·S)
+        let (c, s) = if z < 1.0 {
+            let wd = w * sqrt((1.0 - z) * (1.0 + z));
+            let e = exp(-a * t);
+            (e * cos(wd * t), e * sin(wd * t) / wd)
+        } else if z == 1.0 {
+            let e = exp(-a * t);
+            (e, e * t)
+        } else {
+            let gamma = w * sqrt(z - 1.0) * sqrt(z + 1.0);
+            let (up, down) = (exp((gamma - a) * t), exp(-(gamma + a) * t));
+            (0.5 * (up + down), 0.5 * (up - down) / gamma)
+        };
+        (
+            (c + a * s) * offset + s * velocity,
+            -w * w * s * offset + (c - a * s) * velocity,
+        )
+    }
+
     /// The weights `(P, Q)` of the step velocity `u₀ = P·x₀ + Q·v₀ = x(0) − x(−dt)` that
     /// starts the discrete spring on the continuous trajectory through offset `x₀` (from
     /// the rest position) with velocity `v₀`.
