@@ -82,6 +82,15 @@ pub enum Parameter {
     EncoderResolution,
     /// A control loop rate, in hertz.
     LoopRate,
+    /// A friction: its rate (per second), a deceleration rate per millisecond (iOS) or a
+    /// friction scalar (Android).
+    Friction,
+    /// A range's bounds (a scroll's minimum and maximum offset).
+    Bounds,
+    /// The spacing of snap points (items, pages).
+    SnapSpacing,
+    /// A rubber band's dimension (the viewport it stretches over).
+    RubberBand,
     /// A scene's linear damping rate `c` (per second: a free particle's velocity decays
     /// as `e^{−c·t}`).
     LinearDamping,

@@ -41,6 +41,8 @@
 //! - [`SpringValue`], [`SpringBatch`]: values that spring toward targets and report
 //!   ([`Motion`], [`BatchMotion`]) when they settle; [`RestThreshold`]: when they count as
 //!   settled.
+//! - [`Decay`], [`Friction`]: a value thrown without a target, slowed by friction as the
+//!   platforms give it, with its resting point known at release.
 //! - [`Error`]: what set-up can reject, with the parameter, its value and the bound.
 //!   Stepping never fails.
 //!
@@ -63,7 +65,9 @@
 #![allow(clippy::needless_range_loop)]
 
 mod batch;
+mod decay;
 mod error;
+mod friction;
 mod input;
 pub mod kernel;
 pub mod knob;
@@ -78,7 +82,9 @@ mod tuning;
 mod value;
 
 pub use batch::{BatchIndex, BatchMotion, SpringBatch};
+pub use decay::Decay;
 pub use error::{Bound, Error, Parameter, Remedy};
+pub use friction::Friction;
 pub use knob::{Knob, KnobConfig, KnobOutput};
 pub use motion::Motion;
 pub use rest::RestThreshold;

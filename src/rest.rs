@@ -178,6 +178,47 @@ impl<S: Scalar> RestBand<S> {
         }
     }
 
+    /// The band of a [`Decay`](crate::Decay) (a friction with no stiffness), whose offset
+    /// from its resting point is `−ũ/C_d`: at rest when the travel it has left,
+    /// `|ũ|/C_d`, is within the position threshold and its velocity, `|ũ|·c/C_d`, within
+    /// the velocity threshold. `damping` is `C_d`, `rate` the friction's `c`.
+    ///
+    /// Only the kept step velocity is tested: the offset is `−ũ/C_d` up to the rounding
+    /// the steps add to it, and a test on it could fail for ever once `ũ` has reached zero
+    /// (in `f32` that drift is at most `2⁻²⁴/C_d` of the throw, 7e−6 at 240 Hz with
+    /// iOS's normal rate, above the default threshold for a long throw). In fixed point
+    /// the band is at least the kept step velocity of one last bit of travel, `lsb·C_d`
+    /// (rounded away from zero, the damping term brings `ũ` to zero, so the value always
+    /// gets there).
+    pub(crate) fn decay(threshold: &RestThreshold, damping: f64, rate: f64) -> Self {
+        let p = threshold.position;
+        let by_travel = p * damping;
+        let by_speed = threshold.velocity * damping / rate;
+        let u = if by_travel < by_speed {
+            by_travel
+        } else {
+            by_speed
+        };
+        // Floats: at least 1e−30, far below anything visible. Below it a float `ũ`
+        // reaches the subnormals, where `C_d·ũ` rounds to nothing and `ũ` stops
+        // shrinking: a band of zero would never be reached.
+        let least = if S::RESOLUTION > 0.0 {
+            S::RESOLUTION * damping
+        } else {
+            1e-30
+        };
+        let clamp = |v: f64, least: f64| {
+            let v = if v < least { least } else { v };
+            let half = 0.5 * S::STATE_MAX;
+            S::band(S::state_from_f64(if v > half { half } else { v }))
+        };
+        RestBand {
+            // Every offset: half the state's range, the widest band `in_band` takes.
+            offset: clamp(0.5 * S::STATE_MAX, 0.0),
+            step_velocity: clamp(u, least),
+        }
+    }
+
     /// True when both the offset and the step velocity are inside the band. The step
     /// velocity is tested first: a moving spring is outside its band most of the time,
     /// and the test stops at the first comparison.

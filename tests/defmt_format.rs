@@ -19,8 +19,9 @@ use stiffspring::scene::{
     SpringId, Stepper, WrappedAngle,
 };
 use stiffspring::{
-    BatchIndex, BatchMotion, Bound, Error, I16F16, I32F32, Knob, KnobConfig, KnobOutput, Motion,
-    Oscillator, Parameter, Remedy, RestThreshold, SpringBatch, SpringValue, Tuning,
+    BatchIndex, BatchMotion, Bound, Decay, Error, Friction, I16F16, I32F32, Knob, KnobConfig,
+    KnobOutput, Motion, Oscillator, Parameter, Remedy, RestThreshold, SpringBatch, SpringValue,
+    Tuning,
 };
 
 /// Compiles only for `T: defmt::Format`.
@@ -57,6 +58,10 @@ const _: () = {
     is_format::<BatchIndex>();
     is_format::<BatchMotion>();
     is_format::<Motion>();
+    // Throws.
+    is_format::<Friction>();
+    is_format::<Decay<f32, 2>>();
+    is_format::<Decay<I16F16, 1>>();
     // The kernel and the backends' formats.
     in_every_backend!(BodyWeights, LinearisedRest);
     is_format::<FloatGains<f32>>();

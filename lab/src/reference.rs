@@ -21,6 +21,10 @@
 // their links in this module instead of that one.
 pub mod network;
 
+// UI motion beyond a spring to a target: friction, rubber band, a throw into a bound,
+// snapping, a trail (its module docs say what each is written from).
+pub mod ui;
+
 // ---------------------------------------------------------------------------
 // Coefficient limits and reduced mass
 // ---------------------------------------------------------------------------

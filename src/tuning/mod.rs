@@ -34,6 +34,7 @@ pub mod presets;
 pub use exact::Oscillator;
 
 use crate::error::{Bound, Error, Parameter, check, positive, tri};
+use crate::friction::Friction;
 use crate::math;
 
 /// A validated pair of spring coefficients `C_k` (stiffness) and `C_d` (damping),
@@ -249,6 +250,42 @@ impl Tuning {
             retention,
             dt,
             start: (0.0, retention * dt),
+            oscillator: None,
+            root_stiffness: 0.0,
+            growth: 0.0,
+        }
+        .derived())
+    }
+
+    /// The step of a friction sampled every `dt`, in the kept form: `C_k = 0`,
+    /// `C_d = 1 − e^{−c·dt}`, and the exact start `ũ₀ = (1 − C_d)·(x(0) − x(−dt))`.
+    ///
+    /// The continuous throw `x(t) = x₀ + (v₀/c)(1 − e^{−c·t})` has
+    /// `x(0) − x(−dt) = (v₀/c)(e^{c·dt} − 1)`, so `ũ₀ = (v₀/c)(1 − e^{−c·dt}) = (C_d/c)·v₀`:
+    /// `P̃ = 0`, `Q̃ = C_d/c`. Every later step moves `ũ` and keeps `1 − C_d = e^{−c·dt}`
+    /// of it, which is the continuous throw at every sample.
+    ///
+    /// Not public: a value with this tuning has no pull toward its target, so a target
+    /// that moved would never be reached ([`Decay`](crate::Decay) keeps its target on the
+    /// resting point instead).
+    pub(crate) const fn friction(friction: &Friction, dt: f64) -> Result<Self, Error> {
+        let dt = tri!(positive(dt, Parameter::TimeStep));
+        let rate = friction.rate();
+        let damping = friction.damping(dt);
+        // A friction so weak that `c·dt` underflows has no step that samples it.
+        if damping <= 0.0 || damping.is_nan() {
+            return Err(Error::OutOfRange {
+                parameter: Parameter::Friction,
+                value: rate,
+                bound: Bound::Positive,
+            });
+        }
+        Ok(Tuning {
+            stiffness: 0.0,
+            damping,
+            retention: math::exp(-rate * dt),
+            dt,
+            start: (0.0, damping / rate),
             oscillator: None,
             root_stiffness: 0.0,
             growth: 0.0,
