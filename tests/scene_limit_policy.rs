@@ -14,6 +14,7 @@
 //!
 //! The limits themselves are measured in `tests/network_limits.rs`.
 
+use proptest::prelude::*;
 use stiffspring::length::{Exact, LengthKernel, Linearised};
 use stiffspring::scene::{
     Added, LimitPolicy, ParticleId, Scene, SceneConfig, SpringId, Stepper, network_limit,
@@ -522,4 +523,108 @@ fn a_drag_cannot_take_a_lone_spring_out_of_its_region() {
     }
     assert_eq!(s.linear_damping(body).unwrap(), 0.0);
     s.set_linear_damping(body, 18.0).unwrap();
+}
+
+/// The tunings a value takes near the edge of Jury's region, where a rounding of the
+/// scene's test would refuse what a value accepts: raw coefficients `C_k` within
+/// `10⁻¹²` to `30 %` of `4 − 2·C_d`, and exact maps up to `f·dt = 0.499` with `ζ` from
+/// 0 to 10, at 60 Hz, 1 kHz and 10 kHz.
+fn edge_tuning() -> impl Strategy<Value = Tuning> {
+    let raw = (
+        0.0f64..1.999,
+        0.5f64..12.0,
+        prop::sample::select(vec![1.0 / 60.0, 1e-3, 1e-4]),
+    )
+        .prop_filter_map("outside Jury's region", |(cd, digits, dt)| {
+            let ck = (4.0 - 2.0 * cd) * (1.0 - 10f64.powf(-digits));
+            Tuning::from_coefficients_extended(ck, cd, dt).ok()
+        });
+    let exact = (
+        0.001f64..0.499,
+        0.0f64..10.0,
+        prop::sample::select(vec![1.0 / 60.0, 1e-3, 1e-4]),
+    )
+        .prop_filter_map("not a tuning", |(f_dt, zeta, dt)| {
+            Tuning::from_frequency(f_dt / dt, zeta, dt).ok()
+        });
+    prop_oneof![raw, exact]
+}
+
+/// Every way a spring is lone: to a pin (1-D, and 2-D with a point spring or a rest
+/// length, the pin holding a second body on its own spring), and between two free bodies
+/// (masses 3 and 1). Each must be accepted when a value accepts the tuning, and stay
+/// within the value's transient bound (`Tuning::growth`) for 400 steps.
+fn lone_in_every_geometry<S: Scalar>(t: &Tuning) -> Result<(), TestCaseError> {
+    if stiffspring::SpringValue::<S>::new([S::ZERO], t).is_err() {
+        return Ok(()); // a gain the backend cannot hold: refused alike, not this test's subject
+    }
+    let bound = 2.0 * t.growth() + 1.0;
+    for free_pair in [false, true] {
+        let mut s = Scene::<S, 1, 2, 1>::new(SceneConfig::new(t.dt()).unwrap().no_sleep());
+        let a = if free_pair {
+            s.add_particle([S::ZERO], S::from_f64(3.0)).unwrap()
+        } else {
+            s.add_pinned([S::ZERO]).unwrap()
+        };
+        let b = s.add_particle([S::ONE], S::ONE).unwrap();
+        let added = s.add_spring(a, b, S::ZERO, t);
+        prop_assert!(
+            added.is_ok(),
+            "{} 1-D {t:?} free pair {free_pair}: {added:?}",
+            S::NAME
+        );
+        for _ in 0..400 {
+            let _ = s.step();
+            let d = s.position(b).unwrap()[0].to_f64() - s.position(a).unwrap()[0].to_f64();
+            prop_assert!(d.abs() <= bound, "{} 1-D {t:?}: {d} > {bound}", S::NAME);
+        }
+    }
+    for rest in [0.0, 1.0] {
+        let mut s = Scene::<S, 2, 3, 2>::new(SceneConfig::new(t.dt()).unwrap().no_sleep());
+        let pin = s.add_pinned([S::ZERO, S::ZERO]).unwrap();
+        let other = s.add_particle([S::ONE, S::ZERO], S::ONE).unwrap();
+        s.add_spring(
+            pin,
+            other,
+            S::ZERO,
+            &Tuning::from_coefficients(0.5, 0.5, t.dt()).unwrap(),
+        )
+        .unwrap();
+        let body = s
+            .add_particle([S::from_f64(1.2), S::from_f64(1.6)], S::from_f64(2.0))
+            .unwrap();
+        let added = s.add_spring(pin, body, S::from_f64(rest), t);
+        prop_assert!(
+            added.is_ok(),
+            "{} 2-D rest {rest} {t:?}: {added:?}",
+            S::NAME
+        );
+        // The stretch is 2 − rest along (0.6, 0.8).
+        let amplitude = 2.0 - rest;
+        for _ in 0..400 {
+            let _ = s.step();
+            let p = s.position(body).unwrap();
+            let x = p[0].to_f64().hypot(p[1].to_f64()) - rest;
+            prop_assert!(
+                x.abs() <= bound * amplitude,
+                "{} 2-D rest {rest} {t:?}: {x}",
+                S::NAME
+            );
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// At the edge of the region too, in every backend: a lone spring is refused only
+    /// where a value is.
+    #[test]
+    fn a_lone_spring_at_the_edge_of_the_region_is_accepted_as_a_value_is(t in edge_tuning()) {
+        lone_in_every_geometry::<f64>(&t)?;
+        lone_in_every_geometry::<f32>(&t)?;
+        lone_in_every_geometry::<I32F32>(&t)?;
+        lone_in_every_geometry::<I16F16>(&t)?;
+    }
 }
