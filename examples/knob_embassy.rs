@@ -367,20 +367,11 @@ impl Sim {
         s.final_torque = command.to_bits();
         true
     }
-
-    /// The whole scene from a plain loop, the events to `send`.
-    fn run(mut self, mut send: impl FnMut(Event) -> bool) -> Summary {
-        loop {
-            let out = self.control();
-            if self.world(&out, &mut send) {
-                return self.summary;
-            }
-        }
-    }
 }
 
 /// SwiftUI's `smooth` spring (0.5 s, no bounce), sampled exactly at 60 Hz.
-const LIST_SPRING: Tuning = tuning!(presets::swiftui::SMOOTH.tuning(1.0 / scene::FRAME_RATE as f64));
+const LIST_SPRING: Tuning =
+    tuning!(presets::swiftui::SMOOTH.tuning(1.0 / scene::FRAME_RATE as f64));
 
 /// The UI: a list whose scroll offset springs to the knob's detent, one row per detent.
 struct Ui {
@@ -476,7 +467,10 @@ fn check(s: &Summary, reference: &Summary, ui: &Ui) -> bool {
     );
     let last = scene::DETENTS as i32 - 1;
     let checks = [
-        ("the same run as the plain loop's, bit for bit", s == reference),
+        (
+            "the same run as the plain loop's, bit for bit",
+            s == reference,
+        ),
         ("turned up to the last detent", s.top_detent == last),
         (
             "the push into the stop hit the endstop once",

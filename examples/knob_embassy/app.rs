@@ -55,7 +55,8 @@ static READ_PAIR: AtomicU32 = AtomicU32::new(0);
 /// Instructions from reading `from` to reading `to` (the timer counts down), less the
 /// reads' own.
 fn between(from: u32, to: u32, shift: u32) -> u32 {
-    timer::instructions(from.wrapping_sub(to), shift).saturating_sub(READ_PAIR.load(Ordering::Relaxed))
+    timer::instructions(from.wrapping_sub(to), shift)
+        .saturating_sub(READ_PAIR.load(Ordering::Relaxed))
 }
 
 /// Without a device crate, cortex-m-rt sends every device interrupt here.
@@ -251,7 +252,10 @@ fn costs(c: &Cost) -> bool {
         ok = false;
     }
     let sleeps = SLEEPS.load(Ordering::Relaxed);
-    let (sleep_sum, sleep_max) = (SLEEP_SUM.load(Ordering::Relaxed), SLEEP_MAX.load(Ordering::Relaxed));
+    let (sleep_sum, sleep_max) = (
+        SLEEP_SUM.load(Ordering::Relaxed),
+        SLEEP_MAX.load(Ordering::Relaxed),
+    );
     let wake = mean_milli(c.wake_sum, c.woken);
     let sleep = mean_milli(sleep_sum, sleeps);
     say!(
@@ -265,9 +269,21 @@ fn costs(c: &Cost) -> bool {
         c.task_max
     );
     let (a, b, cc, d) = milli_parts(mean_milli(c.control_sum, c.periods));
-    say!("control (encoder, Knob::update, torque): {}.{}{}{} instructions", a, b, cc, d);
+    say!(
+        "control (encoder, Knob::update, torque): {}.{}{}{} instructions",
+        a,
+        b,
+        cc,
+        d
+    );
     let (a, b, cc, d) = milli_parts(mean_milli(c.task_sum, c.periods));
-    say!("the knob task's body (control, rotor, channel): {}.{}{}{} instructions", a, b, cc, d);
+    say!(
+        "the knob task's body (control, rotor, channel): {}.{}{}{} instructions",
+        a,
+        b,
+        cc,
+        d
+    );
     let (a, b, cc, d) = milli_parts(wake + sleep);
     say!(
         "the executor per knob period, wake + sleep: {}.{}{}{} instructions of the {} in a period",
@@ -278,9 +294,27 @@ fn costs(c: &Cost) -> bool {
         100_000u32 * 25 / 10 >> c.shift
     );
     ok &= c.woken == c.periods;
-    ok &= against_golden("executor wake (alarm to task)", wake, golden::WAKE_MEAN_MILLI);
-    ok &= against_golden("executor sleep (await to the poll's end)", sleep, golden::SLEEP_MEAN_MILLI);
+    ok &= against_golden(
+        "executor wake (alarm to task)",
+        wake,
+        golden::WAKE_MEAN_MILLI,
+    );
+    ok &= against_golden(
+        "executor sleep (await to the poll's end)",
+        sleep,
+        golden::SLEEP_MEAN_MILLI,
+    );
     ok
+}
+
+/// The whole scene from a plain loop, its events dropped: the reference of the run.
+fn plain_loop(mut sim: Sim) -> Summary {
+    loop {
+        let out = sim.control();
+        if sim.world(&out, |_| true) {
+            return sim.summary;
+        }
+    }
 }
 
 #[cortex_m_rt::entry]
@@ -307,7 +341,7 @@ fn main() -> ! {
     }
     // The reference: the same periods from a plain loop (its events go nowhere). A new
     // `Sim` sets the encoder and the motor back to the start.
-    let Some(reference) = Sim::new().map(|r| r.run(|_| true)) else {
+    let Some(reference) = Sim::new().map(plain_loop) else {
         say!("the configuration was rejected");
         semihosting::process::exit(1)
     };
@@ -319,8 +353,10 @@ fn main() -> ! {
     // requires; nothing else owns the NVIC.
     let mut core = unsafe { cortex_m::Peripherals::steal() };
     unsafe {
-        core.NVIC.set_priority(Irq(time_driver::TIMER0_IRQ), PRIORITY);
-        core.NVIC.set_priority(Irq(time_driver::TIMER1_IRQ), PRIORITY);
+        core.NVIC
+            .set_priority(Irq(time_driver::TIMER0_IRQ), PRIORITY);
+        core.NVIC
+            .set_priority(Irq(time_driver::TIMER1_IRQ), PRIORITY);
         core.NVIC.set_priority(Irq(EXECUTOR_IRQ), PRIORITY);
         NVIC::unmask(Irq(time_driver::TIMER0_IRQ));
         NVIC::unmask(Irq(time_driver::TIMER1_IRQ));
