@@ -291,7 +291,7 @@ fn costs(c: &Cost) -> bool {
         b,
         cc,
         d,
-        100_000u32 * 25 / 10 >> c.shift
+        (100_000u32 * 25 / 10) >> c.shift
     );
     ok &= c.woken == c.periods;
     ok &= against_golden(
