@@ -463,7 +463,7 @@ mod tests {
     fn numbers_are_told_from_names() {
         assert_eq!(
             numbers("| `I16F16` value `step` on thumbv7em | +9,568 | −1.5e−5 | 2-D | 18.0 |"),
-            vec![9568.0, -1.5e-5, 18.0]
+            vec![9568.0, -1.5e-5, 2.0, 18.0]
         );
         assert_eq!(numbers("value_f32_raw, m4f, 64KiB, 2D"), Vec::<f64>::new());
         assert_eq!(numbers("1,174 B and 3.31×, 1, 2"), vec![1174.0, 3.31, 1.0, 2.0]);
