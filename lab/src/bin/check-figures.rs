@@ -92,7 +92,7 @@ fn main() -> ExitCode {
             }
             checked += 1;
             let body = &lines[block.start + 1..block.end];
-            for f in compare(body, &generated, &block.prefix, block.marker.tolerance) {
+            for f in compare(body, &generated, block.marker.tolerance) {
                 findings.push(format!(
                     "{name}:{}: {} (from `{}`, {}): {f}",
                     block.start + 1,
@@ -402,14 +402,11 @@ fn agrees(doc: f64, generated: f64, tolerance: Tolerance) -> bool {
     }
 }
 
-/// The disagreements of a block's lines with the generated lines.
-fn compare(body: &[&str], generated: &[&str], prefix: &str, tolerance: Tolerance) -> Vec<String> {
+/// The disagreements of a block's lines with the generated lines (a block's lines are
+/// read without their doc-comment prefix).
+fn compare(body: &[&str], generated: &[&str], tolerance: Tolerance) -> Vec<String> {
     let mut out = Vec::new();
-    let strip = |l: &str| -> String {
-        let (_, text) = split_prefix(l);
-        let _ = prefix;
-        text.trim_end().to_string()
-    };
+    let strip = |l: &str| -> String { split_prefix(l).1.trim_end().to_string() };
     let body: Vec<String> = body.iter().map(|l| strip(l)).collect();
     let generated: Vec<String> = generated.iter().map(|l| l.trim_end().to_string()).collect();
     if body.len() != generated.len() {
@@ -489,17 +486,17 @@ mod tests {
     #[test]
     fn tolerance_is_relative_to_the_generated_figure() {
         let doc = ["| a | 102 | 11.0 |"];
-        assert!(compare(&doc, &["| a | 100 | 11.0 |"], "", Tolerance::Relative(0.02)).is_empty());
+        assert!(compare(&doc, &["| a | 100 | 11.0 |"], Tolerance::Relative(0.02)).is_empty());
         assert_eq!(
-            compare(&doc, &["| a | 99 | 11.0 |"], "", Tolerance::Relative(0.02)).len(),
+            compare(&doc, &["| a | 99 | 11.0 |"], Tolerance::Relative(0.02)).len(),
             1
         );
         assert_eq!(
-            compare(&doc, &["| b | 102 | 11.0 |"], "", Tolerance::Relative(0.02)).len(),
+            compare(&doc, &["| b | 102 | 11.0 |"], Tolerance::Relative(0.02)).len(),
             1
         );
         assert_eq!(
-            compare(&doc, &["| a | 102 | 11.0 |", "| c |"], "", Tolerance::Exact).len(),
+            compare(&doc, &["| a | 102 | 11.0 |", "| c |"], Tolerance::Exact).len(),
             1
         );
     }
@@ -515,7 +512,7 @@ mod tests {
         let b = blocks(&lines).unwrap();
         assert_eq!((b.len(), b[0].start, b[0].end), (1, 1, 3));
         assert_eq!(b[0].prefix, "//! ");
-        assert!(compare(&lines[2..3], &["| a | 1 |"], "//! ", Tolerance::Exact).is_empty());
+        assert!(compare(&lines[2..3], &["| a | 1 |"], Tolerance::Exact).is_empty());
         assert!(blocks(&lines[..3]).is_err());
     }
 }
