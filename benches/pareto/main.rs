@@ -625,7 +625,7 @@ fn targets_goals(
     let advance = over("value/advance", &|r| r.instructions);
     let advance_time = versus("value/advance", "minimal", &|r, b| r.ns / b.ns);
     t.push_str(&format!(
-        "| f32 value, no rest detection (`advance`) | ≤ 15 instructions/step (issue 12) | {} instructions ({}× the minimal kernel'"'"'s time) | {} |\n",
+        "| f32 value, no rest detection (`advance`) | ≤ 15 instructions/step (issue 12) | {} instructions ({}× the minimal kernel's time) | {} |\n",
         range(advance, 1),
         range(advance_time, 2),
         met(advance.1 <= 15.0)
@@ -636,12 +636,14 @@ fn targets_goals(
         range(step, 1),
         met(step.1 <= 15.0)
     ));
-    let speed = versus("value/step", "animato/semi-implicit-euler", &|r, b| b.ns / r.ns);
+    let speed = versus("value/step", "animato/semi-implicit-euler", &|r, b| {
+        b.ns / r.ns
+    });
     let error = versus("value/step", "animato/semi-implicit-euler", &|r, b| {
         b.error / r.error
     });
     t.push_str(&format!(
-        "| f32 value (`step`) against animato'"'"'s semi-implicit Euler | ≥ 5× faster (issue 21) at ≥ 1000× lower error | {}× faster, {}× lower error | {} |\n",
+        "| f32 value (`step`) against animato's semi-implicit Euler | ≥ 5× faster (issue 21) at ≥ 1000× lower error | {}× faster, {}× lower error | {} |\n",
         range(speed, 2),
         range(error, 0),
         met(speed.0 >= 5.0 && error.0 >= 1000.0)

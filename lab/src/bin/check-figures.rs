@@ -54,7 +54,11 @@ fn main() -> ExitCode {
         let Ok(text) = fs::read_to_string(&doc) else {
             continue;
         };
-        let name = doc.strip_prefix(&root).unwrap_or(&doc).display().to_string();
+        let name = doc
+            .strip_prefix(&root)
+            .unwrap_or(&doc)
+            .display()
+            .to_string();
         let lines: Vec<&str> = text.lines().collect();
         let blocks = match blocks(&lines) {
             Ok(b) => b,
@@ -233,7 +237,10 @@ fn blocks(lines: &[&str]) -> Result<Vec<Block>, (usize, String)> {
         let text = text.trim();
         if text == CLOSE {
             let Some((start, marker, prefix)) = open.take() else {
-                return Err((i + 1, "a closing figures marker without an opening one".into()));
+                return Err((
+                    i + 1,
+                    "a closing figures marker without an opening one".into(),
+                ));
             };
             out.push(Block {
                 marker,
@@ -257,7 +264,8 @@ fn blocks(lines: &[&str]) -> Result<Vec<Block>, (usize, String)> {
 
 /// `<!-- figures: FILE from `COMMAND`, within X % [, long] -->` or `…, exact …`.
 fn marker(text: &str) -> Result<Marker, String> {
-    let form = "expected `<!-- figures: FILE from `COMMAND`, within X % -->` (or `exact`, and `long`)";
+    let form =
+        "expected `<!-- figures: FILE from `COMMAND`, within X % -->` (or `exact`, and `long`)";
     let body = text
         .strip_prefix(OPEN)
         .and_then(|t| t.strip_suffix("-->"))
@@ -347,8 +355,7 @@ fn tokens(line: &str) -> Vec<Token> {
                 }
             };
             digits(&mut i, &mut s, true);
-            if chars.get(i) == Some(&'.') && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit())
-            {
+            if chars.get(i) == Some(&'.') && chars.get(i + 1).is_some_and(|d| d.is_ascii_digit()) {
                 s.push('.');
                 i += 1;
                 digits(&mut i, &mut s, false);
@@ -425,7 +432,10 @@ fn compare(body: &[&str], generated: &[&str], tolerance: Tolerance) -> Vec<Strin
                 _ => false,
             });
         if !same_shape {
-            out.push(format!("line {}: the text differs:\n  doc:       {d}\n  generated: {g}", n + 1));
+            out.push(format!(
+                "line {}: the text differs:\n  doc:       {d}\n  generated: {g}",
+                n + 1
+            ));
             continue;
         }
         for pair in td.iter().zip(&tg) {
@@ -463,7 +473,10 @@ mod tests {
             vec![9568.0, -1.5e-5, 2.0, 18.0]
         );
         assert_eq!(numbers("value_f32_raw, m4f, 64KiB, 2D"), Vec::<f64>::new());
-        assert_eq!(numbers("1,174 B and 3.31×, 1, 2"), vec![1174.0, 3.31, 1.0, 2.0]);
+        assert_eq!(
+            numbers("1,174 B and 3.31×, 1, 2"),
+            vec![1174.0, 3.31, 1.0, 2.0]
+        );
     }
 
     #[test]
