@@ -410,7 +410,8 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
     /// [`Motion::Resting`] from the branch where the flag is read. So a resting value
     /// costs what a moving one does (on the Cortex-M4F, the moving step's 15
     /// instructions instead of the 3 of a flag test), and a moving one 3 instructions
-    /// less than a step that tests the flag first. Many values that rest most of the
+    /// less than a step that tests the flag first (`scripts/cost`, whose tables
+    /// docs/firmware.md includes). Many values that rest most of the
     /// time belong in a [`SpringBatch`](crate::SpringBatch), which skips its settled ones.
     ///
     /// ```

@@ -612,12 +612,17 @@ fn targets_report(rows: &[TargetRow]) -> String {
     goals
 }
 
+/// The range `(lo, hi)` over the six scenes of a figure of one implementation.
+type Over<'a> = &'a dyn Fn(&str, &dyn Fn(&TargetRow) -> Option<f64>) -> (f64, f64);
+/// The range of a figure of one implementation against another on the same scene.
+type Versus<'a> = &'a dyn Fn(&str, &str, &dyn Fn(&TargetRow, &TargetRow) -> f64) -> (f64, f64);
+
 /// The goals of issues 12 and 21 against the targets section, as the Markdown table
 /// docs/benchmarks.md includes (`target/pareto/targets.md`).
 fn targets_goals(
-    over: &dyn Fn(&str, &dyn Fn(&TargetRow) -> Option<f64>) -> (f64, f64),
+    over: Over<'_>,
     range: &dyn Fn((f64, f64), usize) -> String,
-    versus: &dyn Fn(&str, &str, &dyn Fn(&TargetRow, &TargetRow) -> f64) -> (f64, f64),
+    versus: Versus<'_>,
 ) -> String {
     let met = |ok: bool| if ok { "✓" } else { "✗" };
     let mut t = String::new();
