@@ -582,7 +582,9 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
         P::DetentStiffness,
         Limit::LoopStiffness(Zone::Free),
         5.0,
-        stiff.detent_stiffness_limit::<f32>().expect("a soft detent passes"),
+        stiff
+            .detent_stiffness_limit::<f32>()
+            .expect("a soft detent passes"),
     );
     // A rate below the least a knob runs at (a period passed where the rate goes).
     k(
@@ -640,5 +642,8 @@ fn errors_say_which_parameter_what_value_and_the_bound() {
         .expect_err("peak torque")
         .to_string();
     assert!(e.starts_with("DetentStiffness = 5 is outside"), "{e}");
-    assert!(e.contains("the stiffest whose peak torque the motor gives"), "{e}");
+    assert!(
+        e.contains("the stiffest whose peak torque the motor gives"),
+        "{e}"
+    );
 }

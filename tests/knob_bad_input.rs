@@ -5,7 +5,7 @@
 
 use lab::rng::Rng;
 use stiffspring::knob::{KnobError, Latency, Limit, Zone};
-use stiffspring::{Bound, Error, I16F16, I32F32, Knob, KnobConfig, Parameter, Scalar};
+use stiffspring::{Error, I16F16, I32F32, Knob, KnobConfig, Parameter, Scalar};
 
 const NAN: f64 = f64::NAN;
 const INF: f64 = f64::INFINITY;
@@ -163,7 +163,10 @@ fn geometry_is_checked() {
     // More detents than fit at four counts each: the most that fit.
     let e = err(base().endstops(0.0, 1.0).detent_count(1000));
     check(e, DetentCount, Limit::AtMost, 1000.0);
-    assert_eq!(e.limit, (16384.0 / (4.0 * std::f64::consts::TAU)).floor() + 1.0);
+    assert_eq!(
+        e.limit,
+        (16384.0 / (4.0 * std::f64::consts::TAU)).floor() + 1.0
+    );
     let most = e.limit as u32;
     assert!(Knob::<f32>::new(&base().endstops(0.0, 1.0).detent_count(most), 0.0).is_ok());
     check(
@@ -271,7 +274,12 @@ fn stiffness_beyond_what_the_loop_guarantees_is_refused_with_the_bound() {
             s,
         );
     }
-    check(err(base().return_to_centre(NAN, 0.01)), ReturnCentre, Limit::Finite, NAN);
+    check(
+        err(base().return_to_centre(NAN, 0.01)),
+        ReturnCentre,
+        Limit::Finite,
+        NAN,
+    );
     // A detent whose peak torque the motor cannot give: a relay. The peak is at the
     // switching point, 0.55 of the width; the error gives the stiffness the user set and
     // the stiffest whose peak the motor gives.
@@ -371,9 +379,15 @@ mod issue_17 {
         // Was the "Beyond" zone's stiffness "(by 1.000×)".
         let c = layout(KnobConfig::new(1_000.0, 1e-5, 0.05, 256)).detent_stiffness(0.1);
         let e = err(c);
-        check(e, Parameter::CountsPerTurn, Limit::CountTorque(Zone::Beyond), 256.0);
+        check(
+            e,
+            Parameter::CountsPerTurn,
+            Limit::CountTorque(Zone::Beyond),
+            256.0,
+        );
         assert!(e.limit > 256.0, "{e:?}");
-        let finer = layout(KnobConfig::new(1_000.0, 1e-5, 0.05, e.limit as u32)).detent_stiffness(0.1);
+        let finer =
+            layout(KnobConfig::new(1_000.0, 1e-5, 0.05, e.limit as u32)).detent_stiffness(0.1);
         assert!(Knob::<f32>::new(&finer, 0.0).is_ok(), "{e}");
         assert!(!e.to_string().contains("1.000×"), "{e}");
     }
@@ -408,13 +422,21 @@ mod issue_17 {
     fn a_rate_too_low_for_the_springs_reports_the_least_rate() {
         // 100 Hz holds no 0.05 N·m/rad detent on 1e−5 kg·m²: the error names the rate
         // with the least that holds it.
-        let c = KnobConfig::new(100.0, 1e-5, 0.05, 16384).detent_width(0.5).detent_stiffness(0.05);
+        let c = KnobConfig::new(100.0, 1e-5, 0.05, 16384)
+            .detent_width(0.5)
+            .detent_stiffness(0.05);
         let e = err(c);
         assert!(
-            matches!(e.error.parameter(), Some(Parameter::DetentStiffness) | Some(Parameter::LoopRate)),
+            matches!(
+                e.error.parameter(),
+                Some(Parameter::DetentStiffness) | Some(Parameter::LoopRate)
+            ),
             "{e}"
         );
-        assert!(e.limit < e.value || e.error.parameter() == Some(Parameter::LoopRate), "{e:?}");
+        assert!(
+            e.limit < e.value || e.error.parameter() == Some(Parameter::LoopRate),
+            "{e:?}"
+        );
     }
 
     /// Over a grid of refused configurations: no error gives a limit equal to its value,
@@ -427,7 +449,11 @@ mod issue_17 {
                 for k in [0.003, 0.01, 0.03, 0.1, 0.3, 1.0, 3.0] {
                     for stops in [false, true] {
                         let c = KnobConfig::new(rate, 1e-5, 0.05, counts);
-                        let c = if stops { layout(c) } else { c.detent_width(0.26) };
+                        let c = if stops {
+                            layout(c)
+                        } else {
+                            c.detent_width(0.26)
+                        };
                         let Err(e) = Knob::<f32>::new(&c.detent_stiffness(k), 0.0) else {
                             continue;
                         };
@@ -438,7 +464,8 @@ mod issue_17 {
                         assert!(!text.contains("1.000×") && !text.contains("inf"), "{text}");
                         let p = e.error.parameter();
                         assert!(
-                            p == Some(Parameter::DetentStiffness) || p == Some(Parameter::CountsPerTurn),
+                            p == Some(Parameter::DetentStiffness)
+                                || p == Some(Parameter::CountsPerTurn),
                             "{text}"
                         );
                     }

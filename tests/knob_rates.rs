@@ -14,8 +14,11 @@ use stiffspring::{Knob, KnobConfig, Scalar};
 
 /// The grid: `(label, config at rate)` for every combination, stiffness given as a
 /// fraction of `0.04·J·(1 kHz)²`, about the stiffest detent a 1 kHz loop holds.
-fn grid(full: bool) -> Vec<(String, Box<dyn Fn(f64) -> KnobConfig>)> {
-    let mut out: Vec<(String, Box<dyn Fn(f64) -> KnobConfig>)> = Vec::new();
+/// A configuration as a function of the rate.
+type AtRate = Box<dyn Fn(f64) -> KnobConfig>;
+
+fn grid(full: bool) -> Vec<(String, AtRate)> {
+    let mut out: Vec<(String, AtRate)> = Vec::new();
     let inertias: &[f64] = if full { &[1e-6, 1e-5, 1e-4] } else { &[1e-5] };
     let limits: &[f64] = if full { &[0.02, 0.1, 0.5] } else { &[0.05] };
     let zetas: &[f64] = if full { &[0.2, 0.7, 2.0] } else { &[0.7] };
@@ -42,7 +45,9 @@ fn grid(full: bool) -> Vec<(String, Box<dyn Fn(f64) -> KnobConfig>)> {
                                             let c = if stops {
                                                 c.endstops(-2.356, 2.356).detent_count(detents)
                                             } else {
-                                                c.detent_width(core::f64::consts::TAU / detents as f64)
+                                                c.detent_width(
+                                                    core::f64::consts::TAU / detents as f64,
+                                                )
                                             };
                                             c.detent_stiffness(k)
                                         }),
@@ -70,7 +75,10 @@ fn monotone<S: Scalar>(full: bool) -> (usize, usize) {
         for rate in [4_000.0, 10_000.0] {
             if let Err(e) = Knob::<S>::new(&config(rate), S::ZERO) {
                 refused_later += 1;
-                eprintln!("{} {label}: accepted at 1 kHz, refused at {rate} Hz: {e}", S::NAME);
+                eprintln!(
+                    "{} {label}: accepted at 1 kHz, refused at {rate} Hz: {e}",
+                    S::NAME
+                );
                 assert_eq!(
                     e.error.parameter(),
                     Some(stiffspring::Parameter::CountsPerTurn),
@@ -80,7 +88,10 @@ fn monotone<S: Scalar>(full: bool) -> (usize, usize) {
             }
         }
     }
-    println!("{}: {accepted} accepted at 1 kHz, {refused_later} refused at a higher rate", S::NAME);
+    println!(
+        "{}: {accepted} accepted at 1 kHz, {refused_later} refused at a higher rate",
+        S::NAME
+    );
     (accepted, refused_later)
 }
 

@@ -107,24 +107,42 @@ pub const fn refusal(parameter: Option<Parameter>, limit: Limit) -> &'static str
         (Some(P::DetentStiffness), _) => {
             "knob!: detent_stiffness is beyond the loop guarantee: at most KnobConfig::detent_stiffness_limit"
         }
-        (Some(P::DetentTorque), _) => "knob!: detent_torque is refused (peak torque or loop guarantee)",
+        (Some(P::DetentTorque), _) => {
+            "knob!: detent_torque is refused (peak torque or loop guarantee)"
+        }
         (Some(P::EndstopStiffness), _) => "knob!: endstop_stiffness is beyond the loop guarantee",
-        (Some(P::MagnetStiffness), _) => "knob!: magnet_stiffness is refused (peak torque or loop guarantee)",
+        (Some(P::MagnetStiffness), _) => {
+            "knob!: magnet_stiffness is refused (peak torque or loop guarantee)"
+        }
         (Some(P::ReturnStiffness), _) => "knob!: the return_to_centre stiffness is refused",
         (Some(P::ReturnCentre), _) => "knob!: the return_to_centre centre is refused",
         (Some(P::DampingConstant), _) => "knob!: damping is refused",
         (Some(P::DampingRatio), _) => "knob!: damping_ratio is outside [0.2, 2]",
-        (Some(P::LoopRate), _) => "knob!: the loop rate is refused (at least 100 Hz, and high enough for the springs)",
+        (Some(P::LoopRate), _) => {
+            "knob!: the loop rate is refused (at least 100 Hz, and high enough for the springs)"
+        }
         (Some(P::Inertia), _) => "knob!: the inertia must be finite and positive",
         (Some(P::TorqueLimit), _) => "knob!: the torque limit must be finite and positive",
-        (Some(P::CountsPerTurn), _) => "knob!: counts_per_turn is refused (zero, or finer than the backend resolves)",
-        (Some(P::Endstops), _) => "knob!: the endstops are refused (not finite, min >= max, or beyond the backend's range)",
-        (Some(P::DetentCount), _) => "knob!: detent_count is refused (below 2, without endstops, or detents narrower than four counts)",
-        (Some(P::DetentWidth), _) => "knob!: detent_width is refused (not positive, or under four counts)",
+        (Some(P::CountsPerTurn), _) => {
+            "knob!: counts_per_turn is refused (zero, or finer than the backend resolves)"
+        }
+        (Some(P::Endstops), _) => {
+            "knob!: the endstops are refused (not finite, min >= max, or beyond the backend's range)"
+        }
+        (Some(P::DetentCount), _) => {
+            "knob!: detent_count is refused (below 2, without endstops, or detents narrower than four counts)"
+        }
+        (Some(P::DetentWidth), _) => {
+            "knob!: detent_width is refused (not positive, or under four counts)"
+        }
         (Some(P::DetentOrigin), _) => "knob!: detent_origin is refused",
         (Some(P::SnapPoint), _) => "knob!: snap_point is outside [0.5, 1)",
-        (Some(P::Hysteresis), _) => "knob!: hysteresis is refused (negative, or the detent cannot switch)",
-        (Some(P::Magnets), _) => "knob!: the magnets are refused (more than MAX_MAGNETS, not finite, or outside the endstops)",
+        (Some(P::Hysteresis), _) => {
+            "knob!: hysteresis is refused (negative, or the detent cannot switch)"
+        }
+        (Some(P::Magnets), _) => {
+            "knob!: the magnets are refused (more than MAX_MAGNETS, not finite, or outside the endstops)"
+        }
         (Some(P::CaptureRadius), _) => "knob!: magnet_radius is refused",
         _ => "knob!: the knob's configuration is refused",
     }

@@ -35,7 +35,6 @@ pub enum Latency {
     OneStep,
 }
 
-
 /// How a knob feels and what it drives: everything a [`Knob`](crate::Knob) is built from,
 /// in SI units: the loop rate in Hz, the rotor's moment of inertia in kg·m², torques in
 /// N·m, angles in radians, stiffnesses in N·m/rad, damping in N·m·s/rad.

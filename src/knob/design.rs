@@ -9,7 +9,7 @@
 //! again ([`KnobConfig::detent_stiffness_limit`] is one of these searches).
 
 use super::config::{Damping, DetentSpring, KnobConfig, Latency, MAX_MAGNETS};
-use super::error::{KnobError, Limit};
+use super::error::{KnobError, Limit, below};
 use super::stability::{
     COUNT_TORQUE_FRACTION, DECAY_FRACTION, FILTER_LADDER, LoopCoefficients, MIN_FILTER_ALPHA,
     Plant, ZONES, decay_radius, slowest_decay, sqrt,
@@ -157,7 +157,7 @@ const fn count_alpha<S: Scalar>(
     while z < 3 {
         if present[z] {
             let room = most - stiffness[z] * c.count;
-            if !(room > 0.0) {
+            if room.is_nan() || room <= 0.0 {
                 return None;
             }
             need = need.max(damping * c.count / room);
@@ -263,10 +263,10 @@ pub(crate) const fn try_design<S: Scalar>(c: &Checked) -> Result<Design, Failure
             while found < 0.0 && count_ratio.is_finite() && m < ENDSTOP_MULTIPLES.len() {
                 let stiffness = [free, held, free + ENDSTOP_MULTIPLES[m] * base];
                 let present = [true, has_magnets, true];
-                if let Some(a) = count_alpha::<S>(c, damping, &stiffness, &present) {
-                    if zones_pass(&p, &stiffness, &present, a) {
-                        found = ENDSTOP_MULTIPLES[m] * base;
-                    }
+                if let Some(a) = count_alpha::<S>(c, damping, &stiffness, &present)
+                    && zones_pass(&p, &stiffness, &present, a)
+                {
+                    found = ENDSTOP_MULTIPLES[m] * base;
                 }
                 m += 1;
             }
@@ -319,11 +319,7 @@ const fn finish<S: Scalar>(c: &Checked, damping: f64, endstop: f64) -> Result<De
         return Err(Failure::Damper);
     }
     let inside = if has_magnets { held } else { free };
-    let omega = reference_frequency(
-        if inside > 0.0 { inside } else { beyond },
-        damping,
-        inertia,
-    );
+    let omega = reference_frequency(if inside > 0.0 { inside } else { beyond }, damping, inertia);
     let mut alpha = -1.0;
     let mut i = 0;
     while i < FILTER_LADDER.len() {
@@ -418,15 +414,15 @@ const fn finish<S: Scalar>(c: &Checked, damping: f64, endstop: f64) -> Result<De
     let half = reach / 2.0;
     // The farthest angle the user set, for the error.
     let mut far = (c.return_centre.abs(), P::ReturnCentre);
-    if let Some((lo, hi)) = c.bounds {
-        if lo.abs().max(hi.abs()) > far.0 {
-            far = (lo.abs().max(hi.abs()), P::Endstops);
-        }
+    if let Some((lo, hi)) = c.bounds
+        && lo.abs().max(hi.abs()) > far.0
+    {
+        far = (lo.abs().max(hi.abs()), P::Endstops);
     }
-    if let Some(g) = c.grid {
-        if g.origin.abs() > far.0 {
-            far = (g.origin.abs(), P::DetentOrigin);
-        }
+    if let Some(g) = c.grid
+        && g.origin.abs() > far.0
+    {
+        far = (g.origin.abs(), P::DetentOrigin);
     }
     let mut i = 0;
     while i < c.magnet_count {
@@ -487,16 +483,6 @@ const fn finish<S: Scalar>(c: &Checked, damping: f64, endstop: f64) -> Result<De
         zones,
         zone_stiffness: stiffness,
     })
-}
-
-/// `limit`, or the largest number below `value` where rounding made them meet: an error
-/// never gives a limit equal to the value it refuses.
-pub(crate) const fn below(value: f64, limit: f64) -> f64 {
-    if limit < value || !value.is_finite() || value <= 0.0 {
-        limit
-    } else {
-        value * (1.0 - f64::EPSILON)
-    }
 }
 
 /// True when `config` is accepted for backend `S`.
@@ -730,14 +716,17 @@ pub(crate) const fn design_or_reason<S: Scalar>(
     match try_design::<S>(&c) {
         Ok(d) => Ok(d),
         Err(Failure::Refused(e)) => Err((e.error.parameter(), e.bound)),
-        Err(Failure::Count(zone, _)) => {
-            Err((Some(Parameter::CountsPerTurn), Limit::CountTorque(ZONES[zone])))
-        }
+        Err(Failure::Count(zone, _)) => Err((
+            Some(Parameter::CountsPerTurn),
+            Limit::CountTorque(ZONES[zone]),
+        )),
         Err(Failure::Damper) => match config.damping {
             Damping::Coefficient(_) => Err((Some(Parameter::DampingConstant), Limit::LoopDamping)),
             Damping::Ratio(_) => Err((blamed(config, &c, FREE), Limit::LoopStiffness(ZONES[FREE]))),
         },
-        Err(Failure::Loop(zone)) => Err((blamed(config, &c, zone), Limit::LoopStiffness(ZONES[zone]))),
+        Err(Failure::Loop(zone)) => {
+            Err((blamed(config, &c, zone), Limit::LoopStiffness(ZONES[zone])))
+        }
     }
 }
 

@@ -205,6 +205,16 @@ impl KnobError {
     }
 }
 
+/// `limit`, or the largest number below `value` where rounding made them meet: an error
+/// never gives a limit equal to the value it refuses.
+pub(crate) const fn below(value: f64, limit: f64) -> f64 {
+    if limit < value || !value.is_finite() || value <= 0.0 {
+        limit
+    } else {
+        value * (1.0 - f64::EPSILON)
+    }
+}
+
 impl From<KnobError> for Error {
     fn from(e: KnobError) -> Error {
         e.error

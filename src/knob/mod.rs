@@ -151,15 +151,15 @@ mod law;
 pub mod stability;
 mod validate;
 
+pub use compiled::KnobDesign;
 #[doc(hidden)]
 pub use compiled::refusal;
-pub use compiled::KnobDesign;
-pub use config::{Latency, KnobConfig, MAX_MAGNETS};
+pub use config::{KnobConfig, Latency, MAX_MAGNETS};
 pub use error::{KnobError, Limit, Zone};
 pub use events::{Endstop, KnobEvents};
 pub use stability::{
-    DAMPING_RATIO_RANGE, DECAY_FRACTION, INERTIA_UNCERTAINTY, LoopCoefficients,
-    MIN_DAMPING_RATIO, characteristic_polynomial, is_stable, meets_guarantee, spectral_radius,
+    DAMPING_RATIO_RANGE, DECAY_FRACTION, INERTIA_UNCERTAINTY, LoopCoefficients, MIN_DAMPING_RATIO,
+    characteristic_polynomial, is_stable, meets_guarantee, spectral_radius,
 };
 pub use validate::MIN_LOOP_RATE;
 

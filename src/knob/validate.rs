@@ -7,7 +7,7 @@
 //! compiler ([`knob!`](crate::knob!)).
 
 use super::config::{Damping, DetentSpacing, DetentSpring, KnobConfig, Latency, MAX_MAGNETS};
-use super::error::{KnobError, Limit};
+use super::error::{KnobError, Limit, below};
 use crate::error::{Parameter, tri};
 use crate::scalar::Scalar;
 use core::f64::consts::TAU;
@@ -84,7 +84,12 @@ pub(crate) const fn floor(value: f64) -> f64 {
 }
 
 /// The index of the detent nearest to `angle`: `round((angle − origin)/width)`, clamped.
-pub(crate) const fn nearest_index(angle: f64, origin: f64, width: f64, (lo, hi): (i32, i32)) -> i32 {
+pub(crate) const fn nearest_index(
+    angle: f64,
+    origin: f64,
+    width: f64,
+    (lo, hi): (i32, i32),
+) -> i32 {
     let r = floor((angle - origin) / width + 0.5);
     r.clamp(lo as f64, hi as f64) as i32
 }
@@ -454,20 +459,20 @@ pub(crate) const fn validate<S: Scalar>(config: &KnobConfig) -> Result<Checked, 
 
     // Peak torques: a detent or magnet the motor renders unclipped. The error names what
     // the user set, against the most of it whose peak the motor gives.
-    if let Some(g) = grid {
-        if detent * g.threshold > torque_limit {
-            return Err(match config.detent_spring {
-                DetentSpring::PeakTorque(t) => {
-                    KnobError::range(P::DetentTorque, Limit::PeakTorque, t, torque_limit)
-                }
-                DetentSpring::Stiffness(k) => KnobError::range(
-                    P::DetentStiffness,
-                    Limit::PeakTorque,
-                    k,
-                    torque_limit / g.threshold,
-                ),
-            });
-        }
+    if let Some(g) = grid
+        && detent * g.threshold > torque_limit
+    {
+        return Err(match config.detent_spring {
+            DetentSpring::PeakTorque(t) => {
+                KnobError::range(P::DetentTorque, Limit::PeakTorque, t, torque_limit)
+            }
+            DetentSpring::Stiffness(k) => KnobError::range(
+                P::DetentStiffness,
+                Limit::PeakTorque,
+                k,
+                below(k, torque_limit / g.threshold),
+            ),
+        });
     }
     if magnet_count > 0 && magnet * (magnet_radius + hysteresis) > torque_limit {
         return Err(KnobError::range(
