@@ -178,6 +178,9 @@ macro_rules! knob {
         $crate::knob!($config, f32)
     };
     ($config:expr, $backend:ty) => {{
+        // A design runs a few hundred stability checks: more than the evaluator's
+        // default patience on a slow machine.
+        #[allow(long_running_const_eval)]
         const DESIGN: $crate::knob::KnobDesign<$backend> =
             match $crate::knob::KnobDesign::<$backend>::new_or_reason(&$config) {
                 Ok(d) => d,
