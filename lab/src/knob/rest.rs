@@ -45,8 +45,14 @@
 //! - **peak to peak**: the largest minus the smallest command in the window, as a fraction
 //!   of the limit;
 //! - **position peak to peak**: the largest minus the smallest clean encoder count (the
-//!   rotor's angle quantised, without the injected noise), in counts. A run whose position
-//!   swings more than [`OSCILLATING_COUNTS`] (8) counts is "oscillating".
+//!   rotor's angle quantised, without the injected noise), in counts, and the reversals of
+//!   the count's direction. A run is **at rest** when its position stays within
+//!   [`OSCILLATING_COUNTS`] (8) counts peak to peak; otherwise it is **oscillating** when
+//!   the count also reverses direction at least [`OSCILLATING_REVERSALS`] (4) times (the
+//!   definition of issue 13's sweep), and **unsettled** (still creeping towards its detent,
+//!   as a heavily damped, heavy rotor on a wide detent does after 2 s) when it does not.
+//!   The peak-to-peak bound on the torque applies to runs at rest; the reversal bound to
+//!   every run.
 //!
 //! # The grid
 //!
@@ -77,8 +83,11 @@ pub const NOISE_PROBABILITY: f64 = 0.05;
 pub const WINDOW: f64 = 0.3;
 /// Seconds per run of the grid.
 pub const SECONDS: f64 = 2.0;
-/// More than this many counts peak to peak in the window is "oscillating".
+/// More than this many counts peak to peak in the window is not at rest.
 pub const OSCILLATING_COUNTS: i64 = 8;
+/// Reversals of the count's direction in the window that make a run not at rest
+/// "oscillating" rather than "unsettled".
+pub const OSCILLATING_REVERSALS: usize = 4;
 /// The issue's chatter bound: sign reversals per second at rest.
 pub const MAX_REVERSALS_PER_S: f64 = 20.0;
 /// The issue's ripple bound: peak to peak at rest, as a fraction of the limit.
@@ -347,6 +356,10 @@ pub struct Window {
     hi: f64,
     count_lo: i64,
     count_hi: i64,
+    last_count: Option<i64>,
+    direction: i64,
+    count_reversals: usize,
+    nan: bool,
 }
 
 impl Default for Window {
@@ -359,6 +372,10 @@ impl Default for Window {
             hi: f64::NEG_INFINITY,
             count_lo: i64::MAX,
             count_hi: i64::MIN,
+            last_count: None,
+            direction: 0,
+            count_reversals: 0,
+            nan: false,
         }
     }
 }
@@ -381,13 +398,21 @@ impl Window {
             self.last_sign = sign;
         }
         // A NaN command makes the peak to peak NaN, which no bound accepts.
-        if torque.is_nan() {
-            self.lo = f64::NAN;
-        }
+        self.nan |= torque.is_nan();
         self.lo = self.lo.min(torque);
         self.hi = self.hi.max(torque);
         self.count_lo = self.count_lo.min(count);
         self.count_hi = self.count_hi.max(count);
+        if let Some(last) = self.last_count {
+            let d = (count - last).signum();
+            if d != 0 {
+                if self.direction != 0 && d != self.direction {
+                    self.count_reversals += 1;
+                }
+                self.direction = d;
+            }
+        }
+        self.last_count = Some(count);
     }
 
     /// Sign reversals counted so far.
@@ -398,7 +423,7 @@ impl Window {
     /// The metrics, for periods of `dt`.
     pub fn finish(&self, dt: f64) -> RestRun {
         let seconds = self.periods as f64 * dt;
-        let torque_pp = if self.lo.is_nan() {
+        let torque_pp = if self.nan {
             f64::NAN
         } else {
             self.hi - self.lo
@@ -412,6 +437,7 @@ impl Window {
             },
             torque_pp,
             position_pp: self.count_hi.saturating_sub(self.count_lo),
+            count_reversals: self.count_reversals,
             window: seconds,
             max_fraction: 0.0,
         }
@@ -429,6 +455,8 @@ pub struct RestRun {
     pub torque_pp: f64,
     /// Peak to peak of the clean encoder count in the window.
     pub position_pp: i64,
+    /// Reversals of the clean count's direction in the window.
+    pub count_reversals: usize,
     /// The window's duration, s.
     pub window: f64,
     /// The largest |command| of the whole run (a law within its limit keeps it ≤ 1).
@@ -438,17 +466,27 @@ pub struct RestRun {
 impl RestRun {
     /// More than [`MAX_REVERSALS_PER_S`] reversals per second.
     pub fn chatters(&self) -> bool {
-        !(self.reversals_per_s <= MAX_REVERSALS_PER_S)
+        exceeds(self.reversals_per_s, MAX_REVERSALS_PER_S)
     }
 
     /// More than [`MAX_PEAK_TO_PEAK`] of the limit peak to peak (or a NaN command).
     pub fn ripples(&self) -> bool {
-        !(self.torque_pp <= MAX_PEAK_TO_PEAK)
+        exceeds(self.torque_pp, MAX_PEAK_TO_PEAK)
     }
 
-    /// More than [`OSCILLATING_COUNTS`] counts peak to peak.
+    /// Within [`OSCILLATING_COUNTS`] counts peak to peak.
+    pub fn at_rest(&self) -> bool {
+        self.position_pp <= OSCILLATING_COUNTS
+    }
+
+    /// Not at rest, and the count reversed at least [`OSCILLATING_REVERSALS`] times.
     pub fn oscillating(&self) -> bool {
-        self.position_pp > OSCILLATING_COUNTS
+        !self.at_rest() && self.count_reversals >= OSCILLATING_REVERSALS
+    }
+
+    /// Not at rest, but not oscillating either: still creeping.
+    pub fn unsettled(&self) -> bool {
+        !self.at_rest() && !self.oscillating()
     }
 }
 
@@ -711,14 +749,18 @@ pub struct Tally {
     pub chatter: usize,
     /// The most reversals per second, and its run.
     pub worst_chatter: (f64, String),
-    /// Runs above [`MAX_PEAK_TO_PEAK`].
+    /// Runs at rest (see [`RestRun::at_rest`]).
+    pub at_rest: usize,
+    /// Runs at rest above [`MAX_PEAK_TO_PEAK`].
     pub ripple: usize,
-    /// The largest peak to peak (fraction of the limit), and its run.
+    /// The largest peak to peak (fraction of the limit) of a run at rest, and its run.
     pub worst_ripple: (f64, String),
-    /// Runs above [`OSCILLATING_COUNTS`].
+    /// Runs oscillating ([`RestRun::oscillating`]).
     pub oscillating: usize,
-    /// The largest position peak to peak, counts.
-    pub worst_position: i64,
+    /// Runs still creeping ([`RestRun::unsettled`]).
+    pub unsettled: usize,
+    /// The largest position peak to peak (counts), and its run.
+    pub worst_position: (i64, String),
     /// The largest |command| of any run.
     pub max_fraction: f64,
 }
@@ -730,21 +772,29 @@ impl Tally {
         if r.chatters() {
             self.chatter += 1;
         }
-        if r.ripples() {
-            self.ripple += 1;
+        if r.at_rest() {
+            self.at_rest += 1;
+            if r.ripples() {
+                self.ripple += 1;
+            }
+            if exceeds(r.torque_pp, self.worst_ripple.0) {
+                self.worst_ripple = (r.torque_pp, what());
+            }
         }
         if r.oscillating() {
             self.oscillating += 1;
         }
+        if r.unsettled() {
+            self.unsettled += 1;
+        }
         // NaN compares false: a NaN is recorded as the worst at once.
-        if !(r.reversals_per_s <= self.worst_chatter.0) {
+        if exceeds(r.reversals_per_s, self.worst_chatter.0) {
             self.worst_chatter = (r.reversals_per_s, what());
         }
-        if !(r.torque_pp <= self.worst_ripple.0) {
-            self.worst_ripple = (r.torque_pp, what());
+        if r.position_pp > self.worst_position.0 {
+            self.worst_position = (r.position_pp, what());
         }
-        self.worst_position = self.worst_position.max(r.position_pp);
-        if !(r.max_fraction <= self.max_fraction) {
+        if exceeds(r.max_fraction, self.max_fraction) {
             self.max_fraction = r.max_fraction;
         }
     }
@@ -766,21 +816,23 @@ impl Sweep {
     pub fn table(&self, backend: &str) -> String {
         let mut s = format!(
             "{backend}: {} of {} configurations accepted\n\n\
-             | rotor | runs | chatter > 20 rev/s | worst rev/s | p-p > 2 % | worst p-p | oscillating > 8 counts | worst position p-p | max torque |\n\
-             |---|---|---|---|---|---|---|---|---|\n",
+             | rotor | runs | chatter > 20 rev/s | worst rev/s | at rest (≤ 8 counts) | of them p-p > 2 % | worst p-p | oscillating | unsettled | worst position p-p | max torque |\n\
+             |---|---|---|---|---|---|---|---|---|---|---|\n",
             self.accepted, self.configs
         );
         for (kind, t) in RotorKind::ALL.iter().zip(&self.rotors) {
             s.push_str(&format!(
-                "| {} | {} | {} | {:.0} | {} | {:.2} % | {} | {} | {:.3} |\n",
+                "| {} | {} | {} | {:.0} | {} | {} | {:.2} % | {} | {} | {} | {:.3} |\n",
                 kind.name(),
                 t.runs,
                 t.chatter,
                 t.worst_chatter.0,
+                t.at_rest,
                 t.ripple,
                 100.0 * t.worst_ripple.0,
                 t.oscillating,
-                t.worst_position,
+                t.unsettled,
+                t.worst_position.0,
                 t.max_fraction,
             ));
         }
@@ -792,17 +844,25 @@ impl Sweep {
         let mut s = String::new();
         for (kind, t) in RotorKind::ALL.iter().zip(&self.rotors) {
             s.push_str(&format!(
-                "{}: worst chatter {:.0}/s: {}\n{}: worst p-p {:.2} %: {}\n",
+                "{}: worst chatter {:.0}/s: {}\n{}: worst p-p {:.2} %: {}\n{}: worst position {} counts: {}\n",
                 kind.name(),
                 t.worst_chatter.0,
                 t.worst_chatter.1,
                 kind.name(),
                 100.0 * t.worst_ripple.0,
-                t.worst_ripple.1
+                t.worst_ripple.1,
+                kind.name(),
+                t.worst_position.0,
+                t.worst_position.1
             ));
         }
         s
     }
+}
+
+/// `value > bound`, or `value` NaN: a NaN breaks every bound.
+pub fn exceeds(value: f64, bound: f64) -> bool {
+    value.is_nan() || value > bound
 }
 
 /// Periods, from `from` on, in which `|torque(k)| > bound` in `trace` (the torques of
@@ -811,7 +871,7 @@ pub fn periods_above(trace: &[f64], from: usize, bound: f64) -> usize {
     trace
         .iter()
         .skip(from)
-        .filter(|t| !(t.abs() <= bound))
+        .filter(|t| exceeds(t.abs(), bound))
         .count()
 }
 
@@ -822,7 +882,7 @@ pub fn periods_apart(faulty: &[f64], healthy: &[f64], from: usize, bound: f64) -
         .iter()
         .zip(healthy)
         .skip(from)
-        .filter(|(a, b)| !((*a - *b).abs() <= bound))
+        .filter(|(a, b)| exceeds((*a - *b).abs(), bound))
         .count()
 }
 
@@ -963,6 +1023,7 @@ mod tests {
         let mut w = Window::default();
         w.push(0.1, 0);
         w.push(f64::NAN, 0);
+        w.push(0.1, 0);
         assert!(w.finish(1e-3).ripples());
     }
 
