@@ -23,10 +23,21 @@ firmware::output!(defmt);
 
 use firmware::golden::knob as golden;
 use firmware::scenes::knob as scene;
-use scene::{COUNT, DT, INERTIA, LIMIT, MAX, config};
+use scene::{CONFIG, COUNT, DT, INERTIA, LIMIT, MAX};
 
-use stiffspring::knob::Endstop;
-use stiffspring::{Knob, KnobOutput, Scalar};
+use stiffspring::knob::{Endstop, KnobDesign};
+use stiffspring::{Knob, KnobOutput, Scalar, knob};
+
+#[cfg(all(target_os = "none", target_abi = "eabihf"))]
+type Backend = f32;
+#[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
+type Backend = stiffspring::I16F16;
+#[cfg(not(target_os = "none"))]
+type Backend = f32;
+
+/// The scene's knob, designed when the example is built: a refused configuration would
+/// not compile, and the firmware carries no set-up code.
+const DESIGN: KnobDesign<Backend> = knob!(CONFIG, Backend);
 
 /// How long the scene runs, s.
 const SECONDS: f64 = 4.0;
@@ -67,8 +78,11 @@ struct Sample {
 /// Plays the scene on backend `S`, calling `each` after every period. Exact ZOH rotor:
 /// the torque computed from the encoder angle of period `n` acts over period `n + 1`
 /// (one period of delay); the hand's torque is held over each of 8 sub-steps.
-fn play<S: Scalar>(mut each: impl FnMut(&Sample, &KnobOutput<S>)) -> Option<(i32, usize)> {
-    let mut knob = Knob::<S>::new(&config(), S::ZERO).ok()?;
+fn play<S: Scalar>(
+    design: &KnobDesign<S>,
+    mut each: impl FnMut(&Sample, &KnobOutput<S>),
+) -> Option<(i32, usize)> {
+    let mut knob = Knob::from_design(design, S::ZERO).ok()?;
     let (mut theta, mut omega, mut pending) = (0.0f64, 0.0f64, 0.0f64);
     let mut detent_changes = 0;
     let steps = (SECONDS / DT) as usize;
@@ -110,17 +124,10 @@ fn run() -> bool {
         "knob on {}: 20 detents over 270°, 1 kHz, one period of delay",
         firmware::MACHINE
     );
-    #[cfg(all(target_os = "none", target_abi = "eabihf"))]
-    type Backend = f32;
-    #[cfg(all(target_os = "none", not(target_abi = "eabihf")))]
-    type Backend = stiffspring::I16F16;
-    #[cfg(not(target_os = "none"))]
-    type Backend = f32;
-
     #[cfg(not(target_os = "none"))]
     let mut trace: Vec<Sample> = Vec::new();
     let mut last = (0.0, 0.0);
-    let result = play::<Backend>(|s, out| {
+    let result = play(&DESIGN, |s, out| {
         if out.events.detent_step != 0 {
             say!("t = {} ms: detent {}", (s.t * 1e3) as i32, out.detent);
         }
@@ -150,7 +157,7 @@ fn run() -> bool {
     host::report(&trace);
     // At rest in a detent: within a few counts of its centre, with almost no torque.
     let settled = firmware::abs(offset) < 4.0 * COUNT && firmware::abs(last.1) < 0.05;
-    settled & sweep::<Backend>()
+    settled & sweep(&DESIGN)
 }
 
 /// The scripted encoder sweep, open loop, against the golden torques and detents
@@ -164,8 +171,8 @@ fn run() -> bool {
 /// except in the period next to a change of the golden index: an angle within a rounding
 /// of a switching point may switch one period apart (I16F16 rounds the detent boundaries
 /// to Q16.16), and there the torque is not compared either.
-fn sweep<S: Scalar>() -> bool {
-    let Ok(mut knob) = Knob::<S>::new(&config(), S::ZERO) else {
+fn sweep<S: Scalar>(design: &KnobDesign<S>) -> bool {
+    let Ok(mut knob) = Knob::from_design(design, S::ZERO) else {
         say!("the configuration was rejected");
         return false;
     };

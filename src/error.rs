@@ -78,10 +78,32 @@ pub enum Parameter {
     Hysteresis,
     /// A knob's magnetic detent capture radius, or the spacing of its magnetic detents.
     CaptureRadius,
-    /// A knob's encoder resolution.
-    EncoderResolution,
+    /// A knob's encoder counts per turn (`KnobConfig::new`'s `counts_per_turn`).
+    CountsPerTurn,
     /// A control loop rate, in hertz.
     LoopRate,
+    /// A knob's detent stiffness, N·m/rad (`KnobConfig::detent_stiffness`).
+    DetentStiffness,
+    /// A knob's detent peak torque, N·m (`KnobConfig::detent_torque`).
+    DetentTorque,
+    /// A knob's number of detents between its endstops (`KnobConfig::detent_count`).
+    DetentCount,
+    /// A knob's detent origin, rad (`KnobConfig::detent_origin`).
+    DetentOrigin,
+    /// A knob's endstop angles, rad (`KnobConfig::endstops`).
+    Endstops,
+    /// A knob's endstop stiffness, N·m/rad (`KnobConfig::endstop_stiffness`).
+    EndstopStiffness,
+    /// A knob's return-to-centre stiffness, N·m/rad (`KnobConfig::return_to_centre`).
+    ReturnStiffness,
+    /// A knob's return-to-centre angle, rad (`KnobConfig::return_to_centre`).
+    ReturnCentre,
+    /// A knob's magnetic detent angles, rad (`KnobConfig::magnets`).
+    Magnets,
+    /// A knob's magnetic detent stiffness, N·m/rad (`KnobConfig::magnet_stiffness`).
+    MagnetStiffness,
+    /// A knob's maximum speed, rad/s.
+    MaxSpeed,
     /// A friction: its rate (per second), a deceleration rate per millisecond (iOS) or a
     /// friction scalar (Android).
     Friction,
@@ -309,7 +331,7 @@ impl Error {
             | Error::Stale { parameter } => Some(parameter),
             Error::Aliased { .. } => Some(Parameter::Frequency),
             Error::TimeStepMismatch { .. } => Some(Parameter::TimeStep),
-            Error::NeedsEndstops => Some(Parameter::DetentWidth),
+            Error::NeedsEndstops => Some(Parameter::DetentCount),
             _ => None,
         }
     }

@@ -391,14 +391,14 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
     );
     k(
         KnobConfig::new(1e3, 1e-5, 0.05, 0),
-        P::EncoderResolution,
+        P::CountsPerTurn,
         Limit::Positive,
         0.0,
         0.0,
     );
     let fine = KnobConfig::new(1e3, 1e-5, 0.05, 1_000_000);
-    let most = std::f64::consts::TAU / I16F16::RESOLUTION;
-    knob_refuses::<I16F16>(fine, P::EncoderResolution, Limit::AtMost, 1e6, most);
+    let most = (std::f64::consts::TAU / I16F16::RESOLUTION).floor();
+    knob_refuses::<I16F16>(fine, P::CountsPerTurn, Limit::AtMost, 1e6, most);
     assert!(Knob::<f32>::new(&fine, 0.0).is_ok());
     // Damping.
     k(
@@ -432,14 +432,14 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
     // Endstops.
     k(
         knob().endstops(NAN, 1.0),
-        P::Position,
+        P::Endstops,
         Limit::Finite,
         NAN,
         NAN,
     );
     k(
         knob().endstops(1.0, 1.0),
-        P::Position,
+        P::Endstops,
         Limit::Below,
         1.0,
         1.0,
@@ -447,7 +447,7 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
     let far = knob().endstops(0.0, 20_000.0);
     knob_refuses::<I16F16>(
         far,
-        P::Position,
+        P::Endstops,
         Limit::BackendRange,
         20_000.0,
         <I16F16 as Scalar>::MAX / 2.0,
@@ -470,14 +470,14 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
     k(knob().snap_point(1.0), P::SnapPoint, Limit::Below, 1.0, 1.0);
     k(
         knob().detent_count(5),
-        P::DetentWidth,
+        P::DetentCount,
         Limit::NeedsEndstops,
         5.0,
         NAN,
     );
     k(
         knob().endstops(0.0, 1.0).detent_count(1),
-        P::DetentWidth,
+        P::DetentCount,
         Limit::AtLeast,
         1.0,
         2.0,
@@ -508,21 +508,21 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
     // Layer stiffnesses, the return spring's centre.
     k(
         knob().detent_width(0.1).detent_stiffness(-1.0),
-        P::SpringConstant,
+        P::DetentStiffness,
         Limit::NotNegative,
         -1.0,
         0.0,
     );
     k(
         knob().return_to_centre(0.0, -1.0),
-        P::SpringConstant,
+        P::ReturnStiffness,
         Limit::NotNegative,
         -1.0,
         0.0,
     );
     k(
         knob().return_to_centre(NAN, 0.01),
-        P::Position,
+        P::ReturnCentre,
         Limit::Finite,
         NAN,
         NAN,
@@ -532,15 +532,15 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
     let many = MAX_MAGNETS as f64;
     k(
         knob().magnets(&nine),
-        P::CaptureRadius,
+        P::Magnets,
         Limit::Capacity,
         many + 1.0,
         many,
     );
-    k(knob().magnets(&[NAN]), P::Position, Limit::Finite, NAN, NAN);
+    k(knob().magnets(&[NAN]), P::Magnets, Limit::Finite, NAN, NAN);
     k(
         knob().endstops(0.0, 1.0).magnets(&[2.0]),
-        P::Position,
+        P::Magnets,
         Limit::AtMost,
         2.0,
         1.0,
@@ -563,14 +563,15 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
         0.05 - hysteresis,
     );
     // A detent the motor cannot render unclipped: its peak torque is the stiffness times
-    // the switching point, 0.55 of the width (the default snap point).
+    // the switching point, 0.55 of the width (the default snap point); the limit is the
+    // stiffest whose peak the motor gives.
     let strong = knob().detent_width(0.1).detent_stiffness(5.0);
     k(
         strong,
-        P::SpringConstant,
+        P::DetentStiffness,
         Limit::PeakTorque,
-        5.0 * 0.055,
-        0.05,
+        5.0,
+        0.05 / 0.055,
     );
     // A detent the loop cannot hold at 1 kHz (with a motor that can).
     let stiff = KnobConfig::new(1_000.0, 1e-5, 2.0, 16_384)
@@ -578,10 +579,20 @@ fn knob_configuration_errors_name_the_parameter_value_and_limit() {
         .detent_stiffness(5.0);
     k(
         stiff,
-        P::SpringConstant,
+        P::DetentStiffness,
         Limit::LoopStiffness(Zone::Free),
         5.0,
-        NAN,
+        stiff
+            .detent_stiffness_limit::<f32>()
+            .expect("a soft detent passes"),
+    );
+    // A rate below the least a knob runs at (a period passed where the rate goes).
+    k(
+        KnobConfig::new(1e-3, 1e-5, 0.05, 16_384),
+        P::LoopRate,
+        Limit::AtLeast,
+        1e-3,
+        stiffspring::knob::MIN_LOOP_RATE,
     );
 }
 
@@ -630,9 +641,9 @@ fn errors_say_which_parameter_what_value_and_the_bound() {
     let e = Knob::<f32>::new(&strong, 0.0)
         .expect_err("peak torque")
         .to_string();
-    assert!(e.starts_with("SpringConstant = 0.275"), "{e}");
+    assert!(e.starts_with("DetentStiffness = 5 is outside"), "{e}");
     assert!(
-        e.contains("peak torque 0.275 N·m is above the torque limit 0.05 N·m"),
+        e.contains("the stiffest whose peak torque the motor gives"),
         "{e}"
     );
 }

@@ -1,10 +1,39 @@
-//! The knob's configuration, in physical units: set once, validated when the knob is built.
+//! The knob's configuration, in physical units: what the user sets, recorded as given.
+//!
+//! The set-up flows one way: this configuration, then its validation (`validate.rs`),
+//! then the loop design (`design.rs`, with the analysis of [`stability`](super::stability)),
+//! then the backend's values (`compiled.rs`, [`KnobDesign`](super::KnobDesign)), which the
+//! torque law runs on. This file imports none of them: the constants a configuration
+//! needs (its magnet capacity, its latency) are defined here and flow from here.
 
-use super::detents::MAX_MAGNETS;
-use super::error::KnobError;
-use super::stability::Latency;
-use crate::scalar::Scalar;
 use core::f64::consts::TAU;
+
+/// The most magnetic detents a knob holds.
+///
+/// ```
+/// use stiffspring::knob::MAX_MAGNETS;
+/// assert_eq!(MAX_MAGNETS, 8);
+/// ```
+pub const MAX_MAGNETS: usize = 8;
+
+/// When the torque computed from an angle reaches the rotor.
+///
+/// ```
+/// use stiffspring::knob::Latency;
+/// assert_eq!(Latency::default(), Latency::OneStep);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Latency {
+    /// The torque computed from `θ_n` acts over `[t_n, t_{n+1}]`: the haptic loop sets the
+    /// reference of a current loop that is much faster than it, within the same period.
+    SameStep,
+    /// The torque computed from `θ_n` acts over `[t_{n+1}, t_{n+2}]`: the structure of
+    /// SimpleFOC-style firmware (`loopFOC()` applies what the previous `move()` stored).
+    /// Configurations for it are also checked without the delay.
+    #[default]
+    OneStep,
+}
 
 /// How a knob feels and what it drives: everything a [`Knob`](crate::Knob) is built from,
 /// in SI units: the loop rate in Hz, the rotor's moment of inertia in kg·m², torques in
@@ -19,8 +48,21 @@ use core::f64::consts::TAU;
 /// A stiffness is a stiffness: `detent_stiffness(0.1)` is 0.1 N·m/rad at 1, 4 and 10 kHz,
 /// and the damping (given as a ratio or in N·m·s/rad) is the same physical damping too.
 /// What the rate changes is how stiff a spring the sampled loop can hold: about
-/// `0.38·J·rate²` N·m/rad at damping ratio 0.7 with one period of delay, so a configuration
-/// accepted at 1 kHz is accepted at 10 kHz.
+/// `0.038·J·rate²` N·m/rad at damping ratio 0.7 with one period of delay
+/// ([`detent_stiffness_limit`](Self::detent_stiffness_limit), checked below), less with
+/// endstops, whose zone is stiffer. A configuration accepted at 1 kHz is accepted at 4
+/// and 10 kHz in `f32` and `f64` (`tests/knob_rates.rs`; fixed point's shorter filter
+/// bound is in `docs/knob.md`).
+///
+/// ```
+/// use stiffspring::KnobConfig;
+/// for rate in [1_000.0, 4_000.0, 10_000.0] {
+///     let c = KnobConfig::new(rate, 1e-5, 100.0, 1 << 20).detent_width(0.5);
+///     let k = c.detent_stiffness_limit::<f64>()? / (1e-5 * rate * rate);
+///     assert!(k > 0.036 && k < 0.040, "{k}");
+/// }
+/// # Ok::<(), stiffspring::knob::KnobError>(())
+/// ```
 ///
 /// # Layers and zones
 ///
@@ -162,7 +204,7 @@ impl KnobConfig {
     /// ```
     /// assert_eq!(stiffspring::KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).dt(), 1e-3);
     /// ```
-    pub fn dt(&self) -> f64 {
+    pub const fn dt(&self) -> f64 {
         1.0 / self.rate
     }
 
@@ -172,8 +214,8 @@ impl KnobConfig {
     /// let c = stiffspring::KnobConfig::new(1_000.0, 1e-5, 0.05, 16384);
     /// assert_eq!(c.count(), core::f64::consts::TAU / 16384.0);
     /// ```
-    pub fn count(&self) -> f64 {
-        TAU / f64::from(self.counts_per_turn)
+    pub const fn count(&self) -> f64 {
+        TAU / self.counts_per_turn as f64
     }
 
     /// When the torque reaches the rotor (default [`Latency::OneStep`], which is also
@@ -230,7 +272,7 @@ impl KnobConfig {
     /// ```
     /// use stiffspring::{Error, Knob, KnobConfig, Parameter};
     /// let c = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).endstops(1.0, -1.0);
-    /// assert_eq!(Knob::<f32>::new(&c, 0.0).unwrap_err().error.parameter(), Some(Parameter::Position));
+    /// assert_eq!(Knob::<f32>::new(&c, 0.0).unwrap_err().error.parameter(), Some(Parameter::Endstops));
     /// ```
     #[must_use]
     pub const fn endstops(mut self, min: f64, max: f64) -> Self {
@@ -370,8 +412,6 @@ impl KnobConfig {
     /// Magnetic detents at arbitrary angles (at most [`MAX_MAGNETS`], any order), each
     /// pulling the rotor within the [`magnet_radius`](Self::magnet_radius).
     ///
-    /// [`MAX_MAGNETS`]: crate::knob::MAX_MAGNETS
-    ///
     /// ```
     /// use stiffspring::{Error, Knob, KnobConfig};
     /// let c = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).magnets(&[0.0, 1.0]).magnet_stiffness(0.05);
@@ -380,10 +420,18 @@ impl KnobConfig {
     /// assert!(matches!(Knob::<f32>::new(&c, 0.0).unwrap_err().error, Error::CapacityFull { .. }));
     /// ```
     #[must_use]
-    pub fn magnets(mut self, angles: &[f64]) -> Self {
-        let n = angles.len().min(MAX_MAGNETS);
+    pub const fn magnets(mut self, angles: &[f64]) -> Self {
+        let n = if angles.len() < MAX_MAGNETS {
+            angles.len()
+        } else {
+            MAX_MAGNETS
+        };
         self.magnets = [0.0; MAX_MAGNETS];
-        self.magnets[..n].copy_from_slice(&angles[..n]);
+        let mut i = 0;
+        while i < n {
+            self.magnets[i] = angles[i];
+            i += 1;
+        }
         self.magnet_count = n;
         self.magnets_asked = angles.len();
         self
@@ -414,47 +462,5 @@ impl KnobConfig {
     pub const fn magnet_radius(mut self, radius: f64) -> Self {
         self.magnet_radius = Some(radius);
         self
-    }
-
-    /// The stiffest detent (N·m/rad) that [`Knob::new`](crate::Knob::new) accepts for
-    /// backend `S` with everything else as configured: the loop guarantee in every zone
-    /// and the detent's peak torque (a bisection over whole set-ups: a tool for the host,
-    /// not for a boot path). Zero when no detent is accepted.
-    ///
-    /// # Errors
-    ///
-    /// The error of the configuration with a detent of (almost) no stiffness, when even
-    /// that is refused.
-    ///
-    /// ```
-    /// use stiffspring::KnobConfig;
-    /// let c = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).detent_count(24).endstops(0.0, 6.0);
-    /// let k = c.detent_stiffness_limit::<f32>()?;
-    /// assert!(k > 0.01 && k < 1.0);
-    /// assert!(stiffspring::Knob::<f32>::new(&c.detent_stiffness(0.99 * k), 0.0).is_ok());
-    /// assert!(stiffspring::Knob::<f32>::new(&c.detent_stiffness(1.01 * k), 0.0).is_err());
-    /// # Ok::<(), stiffspring::knob::KnobError>(())
-    /// ```
-    pub fn detent_stiffness_limit<S: Scalar>(&self) -> Result<f64, KnobError> {
-        let at = |k: f64| self.detent_stiffness(k).validate::<S>().map(|_| ());
-        let tiny = 1e-12;
-        at(tiny)?;
-        let mut hi = tiny;
-        while at(2.0 * hi).is_ok() {
-            hi *= 2.0;
-            if hi > 1e12 {
-                return Ok(hi);
-            }
-        }
-        let (mut lo, mut hi) = (hi, 2.0 * hi);
-        for _ in 0..48 {
-            let mid = 0.5 * (lo + hi);
-            if at(mid).is_ok() {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Ok(lo)
     }
 }

@@ -10,6 +10,7 @@
 //! band in which a toggling count could switch back and forth is never crossed by one
 //! count (`tests/knob_hysteresis.rs`).
 
+use super::config::MAX_MAGNETS;
 use super::validate::floor;
 use crate::scalar::Scalar;
 
@@ -225,14 +226,6 @@ impl<S: Scalar> Ladder<S> {
         }
     }
 }
-
-/// The most magnetic detents a knob holds.
-///
-/// ```
-/// use stiffspring::knob::MAX_MAGNETS;
-/// assert_eq!(MAX_MAGNETS, 8);
-/// ```
-pub const MAX_MAGNETS: usize = 8;
 
 /// Magnetic detents: centres at arbitrary angles that pull the rotor only within a
 /// capture radius; between them the knob turns freely (apart from the other layers).

@@ -44,28 +44,34 @@ pub enum Limit {
     AtMost,
     /// The value must be below `limit`.
     Below,
-    /// The zone's stiffness (N·m/rad) is above `limit`, the stiffest that meets the loop
-    /// guarantee with the knob's damping, inertia, rate and latency
-    /// ([`knob::stability`](crate::knob::stability)).
+    /// The zone fails the loop guarantee ([`knob::stability`](crate::knob::stability)):
+    /// `value` is what the user set that makes it that stiff (a detent's stiffness or peak
+    /// torque, an endstop's, a magnet's or the return spring's stiffness, named by the
+    /// crate-wide error), `limit` the most of it with which the knob passes, everything
+    /// else as configured (for a detent stiffness,
+    /// [`KnobConfig::detent_stiffness_limit`](crate::KnobConfig::detent_stiffness_limit)).
     LoopStiffness(Zone),
     /// The damping (N·m·s/rad) is above `limit`, the most the loop takes at this rate and
     /// inertia (the damper on its own rings at twice the gain).
     LoopDamping,
     /// The peak torque of a detent (at its switching point) or a magnet (at its release
-    /// radius), in N·m, is above the torque limit: the clamp would make it a relay, which
-    /// can limit-cycle.
+    /// radius) is above the torque limit: the clamp would make it a relay, which can
+    /// limit-cycle. `value` is the stiffness the user set (or the detent's peak torque),
+    /// `limit` the most of it whose peak the motor gives.
     PeakTorque,
     /// The number of magnets is above `limit` ([`MAX_MAGNETS`](crate::knob::MAX_MAGNETS)).
     Capacity,
-    /// The value (an angle, or a gain in angle⁻¹) exceeds what the backend holds, `limit`.
+    /// The value (an angle, a stiffness or a damping) exceeds what the backend holds,
+    /// `limit`.
     BackendRange,
     /// A detent count needs endstops to spread over (`value` is the count, `limit` NaN;
     /// the crate-wide error is [`Error::NeedsEndstops`]).
     NeedsEndstops,
-    /// One encoder count commands more torque (N·m, `value`) through the zone's spring and
-    /// filtered damper, `(K + B·α/dt)·count`, than `limit` ([`COUNT_TORQUE_FRACTION`] of the
-    /// torque limit): the knob would buzz at rest, toggling a count. The crate-wide error
-    /// names the encoder resolution, with the counts per turn that would pass.
+    /// One encoder count commands more torque through the zone's spring and filtered
+    /// damper, `(K + B·α/dt)·count`, than [`COUNT_TORQUE_FRACTION`] of the torque limit: the
+    /// knob would buzz at rest, toggling a count. `value` is the counts per turn, `limit`
+    /// the counts per turn that would pass (a count's torque scales with the count); the
+    /// crate-wide error names [`Parameter::CountsPerTurn`](crate::Parameter::CountsPerTurn).
     ///
     /// [`COUNT_TORQUE_FRACTION`]: crate::knob::stability::COUNT_TORQUE_FRACTION
     CountTorque(Zone),
@@ -73,8 +79,8 @@ pub enum Limit {
 
 /// Why [`Knob::new`](crate::Knob::new) refused a configuration: the crate-wide [`Error`]
 /// (which parameter, what kind of problem; `?` into [`Error`] keeps it), the bound, the
-/// offending value and the bound's limit, in SI units (radians, N·m, N·m/rad, N·m·s/rad,
-/// kg·m², Hz).
+/// offending value and the bound's limit, in the units of the argument the user set
+/// (radians, N·m, N·m/rad, N·m·s/rad, kg·m², Hz, counts per turn).
 ///
 /// ```
 /// use stiffspring::knob::{KnobError, Limit, Zone};
@@ -85,10 +91,13 @@ pub enum Limit {
 ///     .detent_width(0.1)
 ///     .detent_stiffness(5.0);
 /// let err: KnobError = Knob::<f32>::new(&config, 0.0).unwrap_err();
-/// assert_eq!(err.error.parameter(), Some(Parameter::SpringConstant));
+/// assert_eq!(err.error.parameter(), Some(Parameter::DetentStiffness));
 /// assert_eq!(err.bound, Limit::LoopStiffness(Zone::Free));
 /// assert_eq!(err.value, 5.0);
+/// // The stiffest detent that passes.
+/// assert_eq!(err.limit, config.detent_stiffness_limit::<f32>()?);
 /// assert!(err.limit > 0.1 && err.limit < 1.0);
+/// # Ok::<(), KnobError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -104,7 +113,7 @@ pub struct KnobError {
 }
 
 impl KnobError {
-    pub(crate) fn new(error: Error, bound: Limit, value: f64, limit: f64) -> Self {
+    pub(crate) const fn new(error: Error, bound: Limit, value: f64, limit: f64) -> Self {
         KnobError {
             error,
             bound,
@@ -114,17 +123,17 @@ impl KnobError {
     }
 
     /// A finite, strictly positive value, or the error for `parameter`.
-    pub(crate) fn positive(value: f64, parameter: Parameter) -> Result<f64, Self> {
+    pub(crate) const fn positive(value: f64, parameter: Parameter) -> Result<f64, Self> {
         Self::checked(value, parameter, Bound::Positive, Limit::Positive)
     }
 
     /// A finite, non-negative value, or the error for `parameter`.
-    pub(crate) fn non_negative(value: f64, parameter: Parameter) -> Result<f64, Self> {
+    pub(crate) const fn non_negative(value: f64, parameter: Parameter) -> Result<f64, Self> {
         Self::checked(value, parameter, Bound::NonNegative, Limit::NotNegative)
     }
 
     /// A finite value, or the error for `parameter`.
-    pub(crate) fn finite(value: f64, parameter: Parameter) -> Result<f64, Self> {
+    pub(crate) const fn finite(value: f64, parameter: Parameter) -> Result<f64, Self> {
         if value.is_finite() {
             Ok(value)
         } else {
@@ -139,16 +148,24 @@ impl KnobError {
 
     /// The crate's [`check`](crate::error::check) of `value` against a bound whose limit is
     /// 0, with the knob's name for that bound.
-    fn checked(value: f64, parameter: Parameter, bound: Bound, limit: Limit) -> Result<f64, Self> {
-        crate::error::check(value, parameter, bound).map_err(|error| match error {
-            Error::NotFinite { .. } => Self::new(error, Limit::Finite, value, f64::NAN),
-            _ => Self::new(error, limit, value, 0.0),
-        })
+    const fn checked(
+        value: f64,
+        parameter: Parameter,
+        bound: Bound,
+        limit: Limit,
+    ) -> Result<f64, Self> {
+        match crate::error::check(value, parameter, bound) {
+            Ok(v) => Ok(v),
+            Err(error @ Error::NotFinite { .. }) => {
+                Err(Self::new(error, Limit::Finite, value, f64::NAN))
+            }
+            Err(error) => Err(Self::new(error, limit, value, 0.0)),
+        }
     }
 
     /// `value` of `parameter` against `limit` under `bound`, with the crate-wide error that
     /// says the same in its terms.
-    pub(crate) fn range(parameter: Parameter, bound: Limit, value: f64, limit: f64) -> Self {
+    pub(crate) const fn range(parameter: Parameter, bound: Limit, value: f64, limit: f64) -> Self {
         let range = match bound {
             Limit::Finite => return Self::new(Error::NotFinite { parameter }, bound, value, limit),
             Limit::Positive => Bound::Positive,
@@ -188,6 +205,16 @@ impl KnobError {
     }
 }
 
+/// `limit`, or the largest number below `value` where rounding made them meet: an error
+/// never gives a limit equal to the value it refuses.
+pub(crate) const fn below(value: f64, limit: f64) -> f64 {
+    if limit < value || !value.is_finite() || value <= 0.0 {
+        limit
+    } else {
+        value * (1.0 - f64::EPSILON)
+    }
+}
+
 impl From<KnobError> for Error {
     fn from(e: KnobError) -> Error {
         e.error
@@ -207,8 +234,8 @@ impl fmt::Display for KnobError {
             Limit::Below => write!(f, "{v} must be below {l}"),
             Limit::LoopStiffness(zone) => write!(
                 f,
-                "the {zone:?} zone's stiffness {v} N·m/rad is above {l} N·m/rad, the stiffest \
-                 the loop guarantees with this damping, inertia, rate and latency (by {:.3}×)",
+                "{v} is above {l}, the most with which the {zone:?} zone meets the loop \
+                 guarantee with everything else as configured (by {:.3}×)",
                 v / l
             ),
             Limit::LoopDamping => write!(
@@ -218,7 +245,8 @@ impl fmt::Display for KnobError {
             ),
             Limit::PeakTorque => write!(
                 f,
-                "the peak torque {v} N·m is above the torque limit {l} N·m (by {:.3}×)",
+                "{v} is above {l}, the stiffest whose peak torque the motor gives (at the \
+                 detent's switching point or the magnet's release radius; by {:.3}×)",
                 v / l
             ),
             Limit::Capacity => write!(f, "{v} magnets, above the capacity {l}"),
@@ -226,9 +254,9 @@ impl fmt::Display for KnobError {
             Limit::NeedsEndstops => write!(f, "a count of {v} detents needs endstops"),
             Limit::CountTorque(zone) => write!(
                 f,
-                "in the {zone:?} zone one encoder count commands {v} N·m, above {l} N·m (by \
-                 {:.3}×): a finer encoder, a softer spring or less damping",
-                v / l
+                "with {v} counts per turn one count commands more than 1/8 of the torque \
+                 limit in the {zone:?} zone (the knob would buzz at rest): at least {l} counts \
+                 per turn, a softer spring or less damping"
             ),
         }
     }

@@ -45,8 +45,9 @@
 //!
 //! # The guarantee
 //!
-//! [`Knob::new`] refuses, with a [`KnobError`] that names the bound, its value and its
-//! limit, every configuration for which [`stability`] cannot show, in every zone:
+//! [`Knob::new`] (and [`KnobDesign::new`], at compile time with [`knob!`](crate::knob!))
+//! refuses, with a [`KnobError`] that names the argument the user set, its value and the
+//! value of it that would pass, every configuration for which [`stability`] cannot show, in every zone:
 //!
 //! - for any rotor inertia from `J/2` to `2J`, every closed-loop pole has a damping ratio
 //!   of at least 0.1 and decays at least a third as fast as the designed spring, with and
@@ -138,6 +139,9 @@
 //! # Ok::<(), stiffspring::knob::KnobError>(())
 //! ```
 
+// The set-up flows one way: config → validate → design (with stability) → compiled; the
+// run time (law, detents, events) starts from the compiled design.
+mod compiled;
 mod config;
 mod design;
 mod detents;
@@ -147,14 +151,17 @@ mod law;
 pub mod stability;
 mod validate;
 
-pub use config::KnobConfig;
-pub use detents::MAX_MAGNETS;
+pub use compiled::KnobDesign;
+#[doc(hidden)]
+pub use compiled::refusal;
+pub use config::{KnobConfig, Latency, MAX_MAGNETS};
 pub use error::{KnobError, Limit, Zone};
 pub use events::{Endstop, KnobEvents};
 pub use stability::{
-    DAMPING_RATIO_RANGE, DECAY_FRACTION, INERTIA_UNCERTAINTY, Latency, LoopCoefficients,
-    MIN_DAMPING_RATIO, characteristic_polynomial, is_stable, meets_guarantee, spectral_radius,
+    DAMPING_RATIO_RANGE, DECAY_FRACTION, INERTIA_UNCERTAINTY, LoopCoefficients, MIN_DAMPING_RATIO,
+    characteristic_polynomial, is_stable, meets_guarantee, spectral_radius,
 };
+pub use validate::MIN_LOOP_RATE;
 
 use crate::error::Parameter;
 use crate::scalar::Scalar;
@@ -256,31 +263,40 @@ pub struct Knob<S: Scalar> {
 
 impl<S: Scalar> Knob<S> {
     /// Builds a knob from `config`, at rest at `initial_angle` (which picks the starting
-    /// detent).
+    /// detent): [`KnobDesign::new`] then [`Self::from_design`], at run time. A
+    /// configuration known when the firmware is built is cheaper designed by the compiler
+    /// ([`knob!`](crate::knob!)): the run-time path links the validation, the stability
+    /// analysis and `f64` arithmetic (`docs/knob.md`, "Set-up at compile time").
     ///
     /// # Errors
     ///
-    /// The first bad argument, as a [`KnobError`]: the crate-wide [`Error`](crate::Error) (which
-    /// parameter), the [`Limit`] it broke, its value and the bound's limit.
+    /// The first bad argument, as a [`KnobError`]: the crate-wide [`Error`](crate::Error)
+    /// naming the argument the user set, the [`Limit`] it broke, its value and the bound's
+    /// limit in the same units (for the loop's bounds, the value of that argument that
+    /// would pass).
     ///
-    /// | argument | error, bound |
-    /// |---|---|
-    /// | rate, inertia, torque limit not finite or `≤ 0` | `NotFinite` / `NotPositive` (`LoopRate`, `Inertia`, `TorqueLimit`) |
-    /// | encoder counts 0; more per turn than the backend resolves | `NotPositive(EncoderResolution)`; `OutOfRange`, `AtMost` |
-    /// | damping ratio outside [`DAMPING_RATIO_RANGE`]; damping negative | `OutOfRange(DampingRatio)` `AtLeast`/`AtMost`; `Negative(DampingConstant)` |
-    /// | endstops not finite, `min ≥ max`, beyond half the backend's range | `NotFinite` / `OutOfRange(Position)` `Below`/`BackendRange` |
-    /// | snap point outside `[0.5, 1)` | `OutOfRange(SnapPoint)` |
-    /// | hysteresis negative, or switching point at or past the next centre | `Negative` / `OutOfRange(Hysteresis)` |
-    /// | detent width `≤ 0` or under four counts; a count below 2 or without endstops | `NotPositive` / `OutOfRange(DetentWidth)` |
-    /// | a stiffness negative or not finite | `Negative` / `NotFinite` (`SpringConstant`) |
-    /// | a detent's or magnet's peak torque above the torque limit | `OutOfRange(SpringConstant)`, [`Limit::PeakTorque`] |
-    /// | a zone's stiffness beyond the loop guarantee | `OutOfRange(SpringConstant)`, [`Limit::LoopStiffness`] with the stiffest guaranteed |
-    /// | damping beyond the loop guarantee | `OutOfRange(DampingConstant)`, [`Limit::LoopDamping`] |
-    /// | one encoder count commanding more than ⅛ of the limit in a zone | `OutOfRange` (`EncoderResolution`, the counts per turn that would pass), [`Limit::CountTorque`] |
-    /// | more than [`MAX_MAGNETS`] magnets | `CapacityFull` |
-    /// | a magnet outside the endstops; capture radius too small, or zones overlapping | `OutOfRange(Position)`; `OutOfRange(CaptureRadius)` |
-    /// | a gain or angle the backend cannot hold | `OutOfRange`, [`Limit::BackendRange`] |
-    /// | initial angle not finite or outside the backend's range | `NotFinite` / `OutOfRange(Position)` |
+    /// | argument | parameter | bound, limit |
+    /// |---|---|---|
+    /// | rate not finite, `≤ 0`, below [`MIN_LOOP_RATE`] | `LoopRate` | `Finite` / `Positive` / `AtLeast` |
+    /// | inertia, torque limit not finite or `≤ 0` | `Inertia`, `TorqueLimit` | `Finite` / `Positive` |
+    /// | counts per turn 0, more than the backend resolves | `CountsPerTurn` | `Positive` / `AtMost` |
+    /// | damping ratio outside [`DAMPING_RATIO_RANGE`]; damping negative | `DampingRatio`; `DampingConstant` | `AtLeast`/`AtMost`; `NotNegative` |
+    /// | endstops not finite, `min ≥ max`, beyond half the backend's range | `Endstops` | `Finite` / `Below` / `BackendRange` |
+    /// | snap point outside `[0.5, 1)` | `SnapPoint` | `AtLeast` / `Below` |
+    /// | hysteresis negative, or switching point at or past the next centre | `Hysteresis` | `NotNegative` / `Below` |
+    /// | detent width `≤ 0` or under four counts | `DetentWidth` | `Positive` / `AtLeast` |
+    /// | detent count below 2, without endstops, more than fit at four counts each | `DetentCount` | `AtLeast` / `NeedsEndstops` / `AtMost` |
+    /// | detent origin, return centre, magnet angles not finite or beyond the backend | `DetentOrigin`, `ReturnCentre`, `Magnets` | `Finite` / `BackendRange` |
+    /// | a stiffness or peak torque negative or not finite | `DetentStiffness`, `DetentTorque`, `EndstopStiffness`, `ReturnStiffness`, `MagnetStiffness` | `NotNegative` / `Finite` |
+    /// | a detent's or magnet's peak torque above the torque limit | `DetentStiffness` / `DetentTorque` / `MagnetStiffness` | [`Limit::PeakTorque`], the most whose peak fits |
+    /// | a zone beyond the loop guarantee | what makes it that stiff: the detent, else the return spring; the magnet; the endstop if set | [`Limit::LoopStiffness`], the most that passes ([`KnobConfig::detent_stiffness_limit`] for a detent) |
+    /// | springs that no stiffness of theirs makes pass at this rate | `LoopRate` | `AtLeast`, the least rate that passes |
+    /// | damping beyond the loop guarantee | `DampingConstant` | [`Limit::LoopDamping`], the most that passes |
+    /// | one encoder count commanding more than ⅛ of the limit in a zone | `CountsPerTurn` | [`Limit::CountTorque`], the counts per turn that pass |
+    /// | more than [`MAX_MAGNETS`] magnets; a magnet outside the endstops | `CapacityFull`; `Magnets` | `Capacity`; `AtLeast` / `AtMost` |
+    /// | capture radius too small, or zones overlapping | `CaptureRadius` | `AtLeast` / `AtMost` |
+    /// | a gain or angle the backend cannot hold | the stiffness, damping or angle | [`Limit::BackendRange`] |
+    /// | initial angle not finite or outside the backend's range | `Position` | `Finite` / `BackendRange` |
     ///
     /// ```
     /// use stiffspring::knob::{Limit, Zone};
@@ -290,12 +306,42 @@ impl<S: Scalar> Knob<S> {
     ///     .detent_width(0.1)
     ///     .detent_stiffness(0.8);
     /// let err = Knob::<f32>::new(&too_strong, 0.0).unwrap_err();
-    /// assert_eq!(err.error.parameter(), Some(Parameter::SpringConstant));
+    /// assert_eq!(err.error.parameter(), Some(Parameter::DetentStiffness));
     /// assert_eq!(err.bound, Limit::LoopStiffness(Zone::Free));
-    /// assert!(err.limit < 0.8);
+    /// assert_eq!(err.value, 0.8);
+    /// assert_eq!(err.limit, too_strong.detent_stiffness_limit::<f32>()?);
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn new(config: &KnobConfig, initial_angle: S) -> Result<Self, KnobError> {
-        let v = config.validate::<S>()?;
+        Self::from_design(&KnobDesign::new(config)?, initial_angle)
+    }
+
+    /// Starts a knob from a [`KnobDesign`] (made at compile time with
+    /// [`knob!`](crate::knob!), or at run time with [`KnobDesign::new`]), at rest at
+    /// `initial_angle`. No validation and no loop design happen here: the firmware of a
+    /// knob designed at compile time links neither.
+    ///
+    /// # Errors
+    ///
+    /// `NotFinite(Position)` for a NaN or infinite angle, `OutOfRange(Position)` with
+    /// [`Limit::BackendRange`] for one beyond the backend's range.
+    ///
+    /// ```
+    /// use stiffspring::knob::KnobDesign;
+    /// use stiffspring::{Knob, KnobConfig, knob};
+    ///
+    /// const CONFIG: KnobConfig = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384)
+    ///     .endstops(0.0, 3.0)
+    ///     .detent_count(16)
+    ///     .detent_stiffness(0.05);
+    /// const DESIGN: KnobDesign<f32> = knob!(CONFIG);
+    /// let knob = Knob::from_design(&DESIGN, 1.0)?;
+    /// assert_eq!(knob.detent(), 5);
+    /// assert!(Knob::from_design(&DESIGN, f32::NAN).is_err());
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn from_design(design: &KnobDesign<S>, initial_angle: S) -> Result<Self, KnobError> {
+        let v = &design.design;
         let start = initial_angle.to_f64();
         let start = KnobError::finite(start, Parameter::Position)?;
         if start.abs() > v.reach {
@@ -324,11 +370,14 @@ impl<S: Scalar> Knob<S> {
             },
         ];
         let ladder = match v.grid {
-            Some((origin, width, threshold, range)) => {
-                let index = nearest_index(start, origin, width, range);
-                Ladder::new(origin, width, threshold, range, index)
+            Some(g) => {
+                let index = nearest_index(start, g.origin, g.width, g.range);
+                Ladder::new(g.origin, g.width, g.threshold, g.range, index)
             }
-            None => Ladder::fixed(v.bounds.map_or(0.0, |(lo, _)| lo)),
+            None => Ladder::fixed(match v.bounds {
+                Some((lo, _)) => lo,
+                None => 0.0,
+            }),
         };
         let magnets = Magnets::new(
             &v.magnets[..v.magnet_count],
@@ -366,9 +415,7 @@ impl<S: Scalar> Knob<S> {
             rest_zone: v.count,
             loop_coefficients: v.zones,
             zone_stiffness: v.zone_stiffness,
-            grid: v
-                .grid
-                .map(|(origin, width, _, range)| (origin, width, range)),
+            grid: v.grid.map(|g| (g.origin, g.width, g.range)),
         };
         knob.reset(initial_angle);
         Ok(knob)

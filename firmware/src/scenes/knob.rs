@@ -20,15 +20,19 @@ pub const COUNT: f64 = core::f64::consts::TAU / 16384.0;
 pub const MAX: f64 = 0.75 * core::f64::consts::TAU;
 
 /// The knob of the scene: 20 detents of 0.1 N·m/rad (a 12 mN·m click), endstops adding
-/// 0.15 N·m/rad.
-pub fn config() -> KnobConfig {
-    KnobConfig::new(1.0 / DT, INERTIA, LIMIT, 16384)
-        .latency(Latency::OneStep)
-        .endstops(0.0, MAX)
-        .endstop_stiffness(0.15)
-        .detent_count(20)
-        .detent_stiffness(0.1)
-        .hysteresis(2.0 * COUNT)
+/// 0.15 N·m/rad. A constant, so that firmware designs it when it is built
+/// (`stiffspring::knob!(CONFIG)`).
+pub const CONFIG: KnobConfig = KnobConfig::new(1.0 / DT, INERTIA, LIMIT, 16384)
+    .latency(Latency::OneStep)
+    .endstops(0.0, MAX)
+    .endstop_stiffness(0.15)
+    .detent_count(20)
+    .detent_stiffness(0.1)
+    .hysteresis(2.0 * COUNT);
+
+/// [`CONFIG`], for code that builds the knob at run time.
+pub const fn config() -> KnobConfig {
+    CONFIG
 }
 
 /// Periods of the scripted sweep.

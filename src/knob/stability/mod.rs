@@ -82,28 +82,10 @@
 
 mod polynomial;
 
+pub use super::config::Latency;
 use super::error::Zone;
 pub(crate) use crate::math::sqrt;
 use polynomial::{damped, hurwitz, tustin_polynomial};
-
-/// When the torque computed from an angle reaches the rotor.
-///
-/// ```
-/// use stiffspring::knob::Latency;
-/// assert_eq!(Latency::default(), Latency::OneStep);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub enum Latency {
-    /// The torque computed from `θ_n` acts over `[t_n, t_{n+1}]`: the haptic loop sets the
-    /// reference of a current loop that is much faster than it, within the same period.
-    SameStep,
-    /// The torque computed from `θ_n` acts over `[t_{n+1}, t_{n+2}]`: the structure of
-    /// SimpleFOC-style firmware (`loopFOC()` applies what the previous `move()` stored).
-    /// Configurations for it are also checked without the delay.
-    #[default]
-    OneStep,
-}
 
 /// The factor by which the real rotor inertia may differ from the configured one, either
 /// way: every check holds for inertias from `J/2` to `2·J` (loop gains `½…2`).
@@ -223,7 +205,7 @@ pub struct LoopCoefficients {
 
 impl LoopCoefficients {
     /// The loop with the inertia divided by `g` (both gains times `g`).
-    fn scaled(self, g: f64) -> Self {
+    const fn scaled(self, g: f64) -> Self {
         LoopCoefficients {
             stiffness: g * self.stiffness,
             damping: g * self.damping,
@@ -251,16 +233,18 @@ type Poly = [f64; 6];
 ///     assert!((a - b).abs() < 1e-12);
 /// }
 /// ```
-pub fn characteristic_polynomial(c: LoopCoefficients, delay: usize) -> ([f64; 6], usize) {
+pub const fn characteristic_polynomial(c: LoopCoefficients, delay: usize) -> ([f64; 6], usize) {
     let (ck, cd, a) = (c.stiffness, c.damping, c.filter);
     let b = 1.0 - a;
-    let d = delay.min(1);
+    let d = if delay > 1 { 1 } else { delay };
     let mut p = [0.0; 6];
     if ck == 0.0 {
         // (p / (z − 1)): 2(z − 1)(z − β)z^d + C_d·α·(z + 1).
         let base = [2.0 * b, -2.0 - 2.0 * b, 2.0];
-        for (k, x) in base.iter().enumerate() {
-            p[k + d] += x;
+        let mut k = 0;
+        while k < base.len() {
+            p[k + d] += base[k];
+            k += 1;
         }
         p[0] += cd * a;
         p[1] += cd * a;
@@ -268,8 +252,10 @@ pub fn characteristic_polynomial(c: LoopCoefficients, delay: usize) -> ([f64; 6]
     }
     // 2(z − 1)²(z − β)z^d
     let base = [-2.0 * b, 2.0 + 4.0 * b, -4.0 - 2.0 * b, 2.0];
-    for (k, x) in base.iter().enumerate() {
-        p[k + d] += x;
+    let mut k = 0;
+    while k < base.len() {
+        p[k + d] += base[k];
+        k += 1;
     }
     // (z + 1)·C_k·(z − β) = C_k·(z² + (1 − β)z − β)
     p[0] += -ck * b;
@@ -282,7 +268,7 @@ pub fn characteristic_polynomial(c: LoopCoefficients, delay: usize) -> ([f64; 6]
 }
 
 /// The delays a latency is checked with.
-fn delays(latency: Latency) -> &'static [usize] {
+const fn delays(latency: Latency) -> &'static [usize] {
     match latency {
         Latency::SameStep => &[0],
         Latency::OneStep => &[1, 0],
@@ -299,7 +285,7 @@ fn delays(latency: Latency) -> &'static [usize] {
 /// // The article's rigid spring is stable as a particle, not on a sampled rotor.
 /// assert!(!is_stable(rigid, Latency::SameStep));
 /// ```
-pub fn is_stable(c: LoopCoefficients, latency: Latency) -> bool {
+pub const fn is_stable(c: LoopCoefficients, latency: Latency) -> bool {
     if !(c.stiffness.is_finite() && c.damping.is_finite() && c.filter.is_finite()) {
         return false;
     }
@@ -318,19 +304,23 @@ pub fn is_stable(c: LoopCoefficients, latency: Latency) -> bool {
 /// let c = LoopCoefficients { stiffness: 0.01, damping: 0.15, filter: 0.5 };
 /// assert!(spectral_radius(c, Latency::SameStep) < 1.0);
 /// ```
-pub fn spectral_radius(c: LoopCoefficients, latency: Latency) -> f64 {
+pub const fn spectral_radius(c: LoopCoefficients, latency: Latency) -> f64 {
     if !(c.stiffness.is_finite() && c.damping.is_finite() && c.filter.is_finite()) {
         return f64::NAN;
     }
     let d = delays(latency)[0];
     let (p, n) = characteristic_polynomial(c, d);
-    let mut hi = 1.0;
-    for x in &p[..n] {
-        hi = f64::max(hi, 1.0 + (x / p[n]).abs());
+    let mut hi = 1.0f64;
+    let mut k = 0;
+    while k < n {
+        hi = hi.max(1.0 + (p[k] / p[n]).abs());
+        k += 1;
     }
     // Bisect on r − 1 (the digits that matter near the unit circle).
     let (mut lo, mut hi) = (-1.0, hi - 1.0);
-    for _ in 0..80 {
+    let mut step = 0;
+    while step < 80 {
+        step += 1;
         let mid = 0.5 * (lo + hi);
         let (q, m) = tustin_polynomial(c, d, mid);
         if hurwitz(&q, m) {
@@ -360,7 +350,7 @@ pub fn spectral_radius(c: LoopCoefficients, latency: Latency) -> f64 {
 /// let stiff = LoopCoefficients { stiffness: 10.0 * c.stiffness, ..c };
 /// assert!(!meets_guarantee(stiff, Latency::OneStep, 0.99));
 /// ```
-pub fn meets_guarantee(c: LoopCoefficients, latency: Latency, radius: f64) -> bool {
+pub const fn meets_guarantee(c: LoopCoefficients, latency: Latency, radius: f64) -> bool {
     if !(c.stiffness.is_finite()
         && c.damping.is_finite()
         && c.filter.is_finite()
@@ -381,10 +371,20 @@ pub fn meets_guarantee(c: LoopCoefficients, latency: Latency, radius: f64) -> bo
 /// [`meets_guarantee`] with the decay radius given as `r − 1` (out of line: set-up calls
 /// it a few dozen times, and a firmware should carry it once).
 #[inline(never)]
-pub(crate) fn meets_guarantee_below(c: LoopCoefficients, latency: Latency, r_minus_1: f64) -> bool {
-    for &d in delays(latency) {
-        for &g in &ROBUST_GAINS {
-            let cg = c.scaled(g);
+pub(crate) const fn meets_guarantee_below(
+    c: LoopCoefficients,
+    latency: Latency,
+    r_minus_1: f64,
+) -> bool {
+    let delays = delays(latency);
+    let mut i = 0;
+    while i < delays.len() {
+        let d = delays[i];
+        i += 1;
+        let mut k = 0;
+        while k < ROBUST_GAINS.len() {
+            let cg = c.scaled(ROBUST_GAINS[k]);
+            k += 1;
             let (q, n) = tustin_polynomial(cg, d, r_minus_1);
             if !hurwitz(&q, n) {
                 return false;
@@ -394,8 +394,10 @@ pub(crate) fn meets_guarantee_below(c: LoopCoefficients, latency: Latency, r_min
                 return false;
             }
         }
-        for &g in &SMALL_GAINS {
-            let (q, n) = tustin_polynomial(c.scaled(g), d, 0.0);
+        let mut k = 0;
+        while k < SMALL_GAINS.len() {
+            let (q, n) = tustin_polynomial(c.scaled(SMALL_GAINS[k]), d, 0.0);
+            k += 1;
             if !hurwitz(&q, n) {
                 return false;
             }
@@ -406,7 +408,7 @@ pub(crate) fn meets_guarantee_below(c: LoopCoefficients, latency: Latency, r_min
 
 /// The slowest decay rate of `J·s² + B·s + K` (per second): `B/2J` when underdamped, the
 /// slow real root otherwise, `B/J` without stiffness.
-pub(crate) fn slowest_decay(k: f64, b: f64, j: f64) -> f64 {
+pub(crate) const fn slowest_decay(k: f64, b: f64, j: f64) -> f64 {
     if k <= 0.0 {
         return b / j;
     }
@@ -420,7 +422,7 @@ pub(crate) fn slowest_decay(k: f64, b: f64, j: f64) -> f64 {
 
 /// `e^{−x} − 1` from below for `0 ≤ x ≤ ½` (the alternating series cut after a negative
 /// term), so that the decay checked is at least the one asked.
-pub(crate) fn decay_radius(x: f64) -> f64 {
+pub(crate) const fn decay_radius(x: f64) -> f64 {
     let x = x.clamp(0.0, 0.5);
     -x + x * x / 2.0 - x * x * x / 6.0
 }
@@ -438,7 +440,7 @@ pub(crate) struct Plant {
 
 impl Plant {
     /// The coefficients of a zone of stiffness `k` with the filter `alpha`.
-    pub(crate) fn coefficients(&self, k: f64, alpha: f64) -> LoopCoefficients {
+    pub(crate) const fn coefficients(&self, k: f64, alpha: f64) -> LoopCoefficients {
         LoopCoefficients {
             stiffness: k * self.dt * self.dt / self.inertia,
             damping: self.damping * self.dt / self.inertia,
@@ -448,7 +450,7 @@ impl Plant {
 
     /// `α` for the filter constant `c` over the frequency `omega`, at least
     /// [`MIN_FILTER_ALPHA`].
-    pub(crate) fn alpha(&self, c: f64, omega: f64) -> f64 {
+    pub(crate) const fn alpha(&self, c: f64, omega: f64) -> f64 {
         if c <= 0.0 || omega <= 0.0 {
             1.0
         } else {
@@ -458,31 +460,8 @@ impl Plant {
     }
 
     /// True when a zone of stiffness `k` meets the guarantee with filter `alpha`.
-    pub(crate) fn zone_ok(&self, k: f64, alpha: f64) -> bool {
+    pub(crate) const fn zone_ok(&self, k: f64, alpha: f64) -> bool {
         meets_guarantee_below(self.coefficients(k, alpha), self.latency, self.radius)
-    }
-
-    /// The stiffest zone that meets the guarantee without a filter (`limit` if that much
-    /// passes, 0 if nothing does), by bisection (error paths and reports only).
-    #[cold]
-    #[inline(never)]
-    pub(crate) fn stiffness_limit(&self, limit: f64) -> f64 {
-        if !self.zone_ok(0.0, 1.0) {
-            return 0.0;
-        }
-        if self.zone_ok(limit, 1.0) {
-            return limit;
-        }
-        let (mut lo, mut hi) = (0.0, limit);
-        for _ in 0..48 {
-            let mid = 0.5 * (lo + hi);
-            if self.zone_ok(mid, 1.0) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        lo
     }
 }
 

@@ -4,7 +4,7 @@
 use super::*;
 
 /// Schur–Cohn on a real polynomial: every root strictly inside the unit circle.
-pub(super) fn schur(coefficients: &Poly, degree: usize) -> bool {
+pub(super) const fn schur(coefficients: &Poly, degree: usize) -> bool {
     let mut p = *coefficients;
     let mut n = degree;
     while n > 0 {
@@ -12,15 +12,20 @@ pub(super) fn schur(coefficients: &Poly, degree: usize) -> bool {
             return false;
         }
         let mut q = [0.0; 6];
-        for j in 0..n {
+        let mut scale = 0.0f64;
+        let mut j = 0;
+        while j < n {
             q[j] = p[n] * p[j + 1] - p[0] * p[n - 1 - j];
+            scale = scale.max(q[j].abs());
+            j += 1;
         }
-        let scale = q[..n].iter().fold(0.0f64, |m, x| m.max(x.abs()));
         if !(scale > 0.0) || !scale.is_finite() {
             return false;
         }
-        for x in q.iter_mut() {
-            *x /= scale;
+        let mut j = 0;
+        while j < 6 {
+            q[j] /= scale;
+            j += 1;
         }
         p = q;
         n -= 1;
@@ -29,14 +34,18 @@ pub(super) fn schur(coefficients: &Poly, degree: usize) -> bool {
 }
 
 /// Polynomial product (coefficients from `w⁰` up; the result must fit).
-pub(super) fn pmul<const N: usize>(a: &[f64], b: &[f64]) -> [f64; N] {
+pub(super) const fn pmul<const N: usize>(a: &[f64], b: &[f64]) -> [f64; N] {
     let mut r = [0.0; N];
-    for (i, x) in a.iter().enumerate() {
-        for (k, y) in b.iter().enumerate() {
+    let mut i = 0;
+    while i < a.len() {
+        let mut k = 0;
+        while k < b.len() {
             if i + k < N {
-                r[i + k] += x * y;
+                r[i + k] += a[i] * b[k];
             }
+            k += 1;
         }
+        i += 1;
     }
     r
 }
@@ -48,7 +57,7 @@ pub(super) fn pmul<const N: usize>(a: &[f64], b: &[f64]) -> [f64; N] {
 /// `z`, so that the gains of a soft spring, down to `C_k ≈ 1e−16`, are not lost against
 /// the `O(1)` coefficients of the double pole at `z = 1`. Without stiffness the factor of
 /// the rest position is divided out. Coefficients from `w⁰` up, and the degree.
-pub(super) fn tustin_polynomial(
+pub(super) const fn tustin_polynomial(
     c: LoopCoefficients,
     delay: usize,
     r_minus_1: f64,
@@ -56,7 +65,7 @@ pub(super) fn tustin_polynomial(
     let (ck, cd, a) = (c.stiffness, c.damping, c.filter);
     let rm = r_minus_1;
     let r = 1.0 + rm;
-    let d = delay.min(1);
+    let d = if delay > 1 { 1 } else { delay };
     let l = [rm, 2.0 + rm]; // (z − 1)(1 − w)
     let m = [rm + a, 2.0 + rm - a]; // (z − β)(1 − w)
     let p = [2.0 + rm, rm]; // (z + 1)(1 − w)
@@ -73,8 +82,10 @@ pub(super) fn tustin_polynomial(
         let a_part: [f64; 6] = pmul(&lm, &zd);
         let b_part: [f64; 6] = pmul(&p, &one_minus);
         let mut q = [0.0; 6];
-        for k in 0..6 {
+        let mut k = 0;
+        while k < 6 {
             q[k] = 2.0 * a_part[k] + cd * a * b_part[k];
+            k += 1;
         }
         return (q, n - 1);
     }
@@ -86,15 +97,17 @@ pub(super) fn tustin_polynomial(
     let pc: [f64; 3] = pmul(&p, &ctrl);
     let b_part: [f64; 6] = pmul(&pc, &one_minus);
     let mut q = [0.0; 6];
-    for k in 0..6 {
+    let mut k = 0;
+    while k < 6 {
         q[k] = 2.0 * a_part[k] + b_part[k];
+        k += 1;
     }
     (q, n)
 }
 
 /// Routh–Hurwitz on a real polynomial (coefficients from `w⁰` up, degree `n ≤ 10`): every
 /// root strictly in the left half-plane.
-pub(super) fn hurwitz(q: &[f64], n: usize) -> bool {
+pub(super) const fn hurwitz(q: &[f64], n: usize) -> bool {
     if n == 0 {
         return q[0] != 0.0;
     }
@@ -102,42 +115,55 @@ pub(super) fn hurwitz(q: &[f64], n: usize) -> bool {
     // Rows of the Routh array: row0 = a_n, a_{n−2}, …; row1 = a_{n−1}, a_{n−3}, …
     let mut r0 = [0.0; 6];
     let mut r1 = [0.0; 6];
-    for j in 0..6 {
+    let mut j = 0;
+    while j < 6 {
         if n >= 2 * j {
             r0[j] = sign * q[n - 2 * j];
         }
         if n > 2 * j {
             r1[j] = sign * q[n - 2 * j - 1];
         }
+        j += 1;
     }
     if !(r0[0] > 0.0) {
         return false;
     }
-    for _ in 0..n {
+    let mut row = 0;
+    while row < n {
         if !(r1[0] > 0.0) || !r1[0].is_finite() {
             return false;
         }
         let mut r2 = [0.0; 6];
-        for j in 0..5 {
+        let mut j = 0;
+        while j < 5 {
             r2[j] = r0[j + 1] - r0[0] * r1[j + 1] / r1[0];
+            j += 1;
         }
         // Rescale (a positive factor keeps the signs).
-        let scale = r1
-            .iter()
-            .chain(r2.iter())
-            .fold(0.0f64, |m, x| m.max(x.abs()));
+        let mut scale = 0.0f64;
+        let mut j = 0;
+        while j < 6 {
+            scale = scale.max(r1[j].abs()).max(r2[j].abs());
+            j += 1;
+        }
         if !(scale > 0.0) || !scale.is_finite() {
             return false;
         }
-        for x in r1.iter_mut().chain(r2.iter_mut()) {
-            *x /= scale;
+        let mut zero = true;
+        let mut j = 0;
+        while j < 6 {
+            r1[j] /= scale;
+            r2[j] /= scale;
+            zero &= r2[j] == 0.0;
+            j += 1;
         }
         r0 = r1;
         r1 = r2;
-        if r1.iter().all(|&x| x == 0.0) {
+        if zero {
             // The last row: done when the array is exhausted.
             break;
         }
+        row += 1;
     }
     true
 }
@@ -149,13 +175,15 @@ pub(super) fn hurwitz(q: &[f64], n: usize) -> bool {
 /// half-plane (`ψ = asin ζ_min`); those are the roots of `q(v·e^{−iψ})` and `q(v·e^{iψ})`,
 /// whose product is a real polynomial, `Q_m = Σ_{k+l=m} q_k·q_l·cos((k − l)·ψ)`, tested by
 /// Routh–Hurwitz.
-pub(super) fn damped(q: &Poly, n: usize) -> bool {
+pub(super) const fn damped(q: &Poly, n: usize) -> bool {
     // No root at |w| ≥ guard: q(guard·u) has its roots inside the unit circle.
     let mut scaled = *q;
     let mut g = 1.0;
-    for x in scaled.iter_mut().take(n + 1) {
-        *x *= g;
+    let mut k = 0;
+    while k <= n && k < 6 {
+        scaled[k] *= g;
         g *= NYQUIST_GUARD;
+        k += 1;
     }
     if !schur(&scaled, n) {
         return false;
@@ -164,14 +192,20 @@ pub(super) fn damped(q: &Poly, n: usize) -> bool {
     let mut cos = [0.0; 6];
     cos[0] = 1.0;
     cos[1] = SECTOR_COS;
-    for k in 2..=n {
+    let mut k = 2;
+    while k <= n {
         cos[k] = 2.0 * SECTOR_COS * cos[k - 1] - cos[k - 2];
+        k += 1;
     }
     let mut product = [0.0; 11];
-    for k in 0..=n {
-        for l in 0..=n {
+    let mut k = 0;
+    while k <= n {
+        let mut l = 0;
+        while l <= n {
             product[k + l] += q[k] * q[l] * cos[k.abs_diff(l)];
+            l += 1;
         }
+        k += 1;
     }
     hurwitz(&product, 2 * n)
 }
