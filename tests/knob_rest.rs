@@ -127,7 +127,8 @@ fn assert_silent(backend: &str, s: &Sweep) {
 }
 
 /// The short grid, printed, the torque within its limit (what today's knob does; its
-/// torque chatters and one configuration oscillates, see `short_rest_sweep_is_silent`).
+/// torque chatters and one configuration oscillates: see `short_rest_sweep_is_silent`,
+/// ignored until the new knob law).
 #[test]
 fn short_rest_sweep_table() {
     let cases = short();
