@@ -68,6 +68,12 @@ trait Bench {
     fn per_step(&self) -> u32 {
         1
     }
+    /// The steps of the two measured runs, `(N₁, N₂)`. A kernel whose cost follows a
+    /// periodic script measures whole periods: `(P, 2P)`, so that the difference of the
+    /// runs is one whole period.
+    fn runs(&self) -> (u32, u32) {
+        (N1, N2)
+    }
 }
 
 /// The empty loop: the harness's own overhead per iteration.
@@ -481,9 +487,14 @@ fn floor_rope<const GUARD: bool, const CARRY: bool>() -> Option<FloorRope<GUARD,
 // The knob
 // ---------------------------------------------------------------------------------------
 
+/// Updates in one sweep of the knob's scripted encoder.
+const SWEEP: u32 = 256;
+
 /// `Knob::update` at 1 kHz with 16 detents between endstops, fed by a scripted encoder
-/// that sweeps the whole range and beyond both endstops (the script is one add and one
-/// compare per step).
+/// that sweeps the whole range and beyond both endstops in [`SWEEP`] updates (the script
+/// is one add and one compare per step). Measured over whole sweeps, after one sweep
+/// that lets the knob reach its periodic motion: a window that is not a whole number of
+/// sweeps weighs some detents and endstops more than others.
 struct KnobUpdate<S: Scalar> {
     knob: Knob<S>,
     angle: S,
@@ -501,6 +512,9 @@ impl<S: Scalar> Bench for KnobUpdate<S> {
             self.angle = self.low;
         }
     }
+    fn runs(&self) -> (u32, u32) {
+        (SWEEP, 2 * SWEEP)
+    }
 }
 fn knob_update<S: Scalar>() -> Option<KnobUpdate<S>> {
     // 1 kHz, 1e−5 kg·m², 50 mN·m, a 14-bit encoder (the knob module's example).
@@ -508,14 +522,20 @@ fn knob_update<S: Scalar>() -> Option<KnobUpdate<S>> {
         .endstops(0.0, 3.0)
         .detent_count(16)
         .detent_stiffness(0.05);
-    Some(KnobUpdate {
+    let mut bench = KnobUpdate {
         knob: Knob::new(&config, S::ZERO).ok()?,
         angle: S::from_f64(-0.2),
-        // 256 steps cover 3.4 rad: both endstops and every detent.
-        increment: S::from_f64(3.4 / 256.0),
+        // A sweep covers 3.4 rad, both endstops and every detent, and the angle passes
+        // `high` at update 256 with a margin of 6.6e−3 rad, far above the rounding of
+        // 256 increments (I16F16: 2e−3 at most): the script repeats every SWEEP updates.
+        increment: S::from_f64(3.4 / (f64::from(SWEEP) - 0.5)),
         low: S::from_f64(-0.2),
         high: S::from_f64(3.2),
-    })
+    };
+    // The warm-up sweep through the measured function itself, so that `Knob::update` is
+    // not inlined a second time here (the M0 firmware's flash holds one copy).
+    let _ = count(&mut bench, SWEEP);
+    Some(bench)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -665,11 +685,12 @@ fn count<B: Bench>(bench: &mut B, n: u32) -> u64 {
 }
 
 /// Thousandths of a unit per step of `bench`, harness included: `(I(N₂) − I(N₁))`
-/// over `N₂ − N₁` steps.
+/// over `N₂ − N₁` steps ([`Bench::runs`]).
 fn per_step_milli<B: Bench>(bench: &mut B) -> i64 {
-    let first = count(bench, N1) as i64;
-    let second = count(bench, N2) as i64;
-    (second - first) * 1000 / (N2 - N1) as i64
+    let (n1, n2) = bench.runs();
+    let first = count(bench, n1) as i64;
+    let second = count(bench, n2) as i64;
+    (second - first) * 1000 / (n2 - n1) as i64
 }
 
 /// Builds a bench with `make`, measures it and prints its CSV line; false when it could

@@ -1,7 +1,9 @@
 //! When a spring counts as settled: a threshold in the user's units.
 //!
 //! A value is at rest when the motion it has left is smaller than a change nobody would
-//! see. At rest it snaps exactly to its target and costs nothing until it is moved.
+//! see. At rest it snaps exactly to its target and stays there until it is moved: a batch,
+//! a decay and a scene then skip it, and a `SpringValue` steps its zero state, which no
+//! step changes (its moving path has no flag test; see `SpringValue::step`).
 
 use crate::error::{Error, Parameter, positive};
 use crate::scalar::Scalar;

@@ -1,4 +1,4 @@
-//! Rest: a value at rest sits exactly on its target and costs nothing; every UI preset
+//! Rest: a value at rest sits exactly on its target and stays there; every UI preset
 //! settles within the time the decay of its slowest mode predicts; fixed point settles
 //! even with a threshold far below its last bit.
 //!
@@ -84,13 +84,21 @@ fn rest_is_exact_and_stable<S: Scalar>() {
         assert_eq!(v.offset(), [S::ZERO; 2]);
         assert_eq!(v.step_velocity(), [S::ZERO; 2]);
         assert_eq!(v.velocity(), [S::ZERO; 2]);
-        // Stepping a value at rest changes nothing.
+        // Stepping a value at rest changes nothing: `step` runs the spring on the zero
+        // state (it tests no flag first), which must stay zero to the bit, sign included.
         let before = state(&v);
+        let bits = |v: &SpringValue<S, 2>| {
+            let (x, u) = (v.offset(), v.step_velocity());
+            [x[0], x[1], u[0], u[1], v.position()[0], v.position()[1]].map(|c| c.to_f64().to_bits())
+        };
+        let before_bits = bits(&v);
         for _ in 0..100 {
             assert_eq!(v.step(), Motion::Resting);
+            assert_eq!(bits(&v), before_bits, "{}", S::NAME);
             v.advance();
         }
         assert_eq!(state(&v), before);
+        assert_eq!(bits(&v), before_bits, "{}", S::NAME);
         // Retargeting to where it already is moves nothing, so it stays at rest.
         v.set_target(target);
         assert_eq!(state(&v), before);
