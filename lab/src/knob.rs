@@ -8,9 +8,11 @@
 //! | [`pd`] | SmartKnob-style PD detents, flicked on this rotor against a law the caller sets up |
 //! | [`sweep`] | the sweep of issue 13: a rotor with a delay of whole periods, the oscillation metric, the grids |
 //! | [`linear`] | the loop's state matrix from the rotor's physics, its poles and characteristic polynomial |
+//! | [`rest`] | issue 17: silence at rest measured on torque, on frictionless, stick-slip and cogging/noisy rotors, and the rest grid |
 
 pub mod linear;
 pub mod pd;
+pub mod rest;
 pub mod sweep;
 
 use std::f64::consts::TAU;
