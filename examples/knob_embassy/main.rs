@@ -581,10 +581,8 @@ firmware::entry!(run_loop);
 
 /// The time driver on the MPS2 board's CMSDK timers.
 #[cfg(all(target_os = "none", target_abi = "eabihf"))]
-#[path = "knob_embassy/time_driver.rs"]
 mod time_driver;
 
 /// The executors, the two tasks and the interrupt handlers.
 #[cfg(all(target_os = "none", target_abi = "eabihf"))]
-#[path = "knob_embassy/app.rs"]
 mod app;
