@@ -507,18 +507,21 @@ impl<S: Scalar> Bench for KnobUpdate<S> {
     fn step(&mut self) {
         let out = self.knob.update(self.angle);
         core::hint::black_box(out.torque);
-        self.angle = self.angle.add(self.increment);
-        if self.angle > self.high {
-            self.angle = self.low;
+        // Up and down (a jump back to the start would be a sensor fault, and measure
+        // the screen's cold path).
+        let next = self.angle.add(self.increment);
+        if next > self.high || next < self.low {
+            self.increment = self.increment.neg();
         }
+        self.angle = self.angle.add(self.increment);
     }
     fn runs(&self) -> (u32, u32) {
-        (SWEEP, 2 * SWEEP)
+        // Whole sweeps, up and down.
+        (2 * SWEEP, 4 * SWEEP)
     }
 }
-/// The knob of the kernel, 1 kHz, 1e−5 kg·m², 50 mN·m, a 14-bit encoder (the knob
-/// module's example), designed at compile time (`knob!`): the firmware carries no run-time
-/// design, as a product's would not (with it the Cortex-M0 firmware overflowed its flash).
+/// The scene's knob, designed at compile time (`knob!`): the firmware carries no run-time
+/// design, as a product's would not.
 const KNOB_CONFIG: KnobConfig = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384)
     .endstops(0.0, 3.0)
     .detent_count(16)
@@ -530,12 +533,14 @@ fn knob_update_i16f16() -> Option<KnobUpdate<I16F16>> {
     knob_update(&stiffspring::knob!(KNOB_CONFIG, I16F16))
 }
 fn knob_update<S: Scalar>(design: &stiffspring::knob::KnobDesign<S>) -> Option<KnobUpdate<S>> {
+    // 1 kHz, 1e−5 kg·m², 50 mN·m, a 14-bit encoder (the knob module's example).
     let mut bench = KnobUpdate {
-        knob: Knob::from_design(design, S::ZERO).ok()?,
+        // At rest where the sweep starts: the sensor screen sees no jump.
+        knob: Knob::from_design(design, S::from_f64(-0.2)).ok()?,
         angle: S::from_f64(-0.2),
-        // A sweep covers 3.4 rad, both endstops and every detent, and the angle passes
-        // `high` at update 256 with a margin of 6.6e−3 rad, far above the rounding of
-        // 256 increments (I16F16: 2e−3 at most): the script repeats every SWEEP updates.
+        // One way covers 3.4 rad, both endstops and every detent, in SWEEP updates (the
+        // angle turns back before `high` with a margin far above the rounding of the
+        // increments); up and down, the script repeats every 2·SWEEP updates.
         increment: S::from_f64(3.4 / (f64::from(SWEEP) - 0.5)),
         low: S::from_f64(-0.2),
         high: S::from_f64(3.2),

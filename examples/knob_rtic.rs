@@ -225,10 +225,14 @@ struct Cost {
     control_max: u32,
     interrupt_sum: u64,
     interrupt_max: u32,
-    /// Periods whose interrupt came more than 1.5 periods after the previous one.
+    /// Ticks lost: an interrupt that came two periods or more after the previous one
+    /// (SysTick's pending flag holds one tick, so a later start is jitter, not a loss;
+    /// the longest gap reports the jitter).
     missed: u32,
     /// The longest gap between two interrupts, in timer ticks (2,500 at 10 kHz).
     longest_gap: u32,
+    /// The period of the first missed tick.
+    first_miss: u32,
 }
 
 /// What the run measured, for the checks.
@@ -393,6 +397,11 @@ fn check(s: &Summary) -> bool {
         s.final_torque
     );
     let last = scene::DETENTS as i32 - 1;
+    // At rest a rotor drifts inside the law's rest zone (zero torque), and comes to rest
+    // within the rest zone and the knee of its rest point (counts).
+    const REST_SWING: i32 = 2 * stiffspring::knob::REST_COUNTS as i32 + 1;
+    const REST_OFFSET: i32 =
+        (stiffspring::knob::REST_COUNTS + stiffspring::knob::KNEE_COUNTS) as i32;
     let checks = [
         ("turned up to the last detent", s.top_detent == last),
         (
@@ -405,11 +414,11 @@ fn check(s: &Summary) -> bool {
         ),
         (
             "at rest on the stop",
-            s.swing_released <= 2 && s.off_stop_released <= 2,
+            s.swing_released <= REST_SWING && s.off_stop_released <= REST_OFFSET,
         ),
         (
             "the flick ends at rest in a lower detent",
-            s.final_detent < last && s.swing_end <= 2 && off_centre_end <= 2,
+            s.final_detent < last && s.swing_end <= REST_SWING && off_centre_end <= REST_OFFSET,
         ),
         ("no event lost", s.dropped == 0),
     ];
@@ -509,10 +518,10 @@ use firmware::timer;
 /// fails the run, and the new figures are then copied here (and into `docs/knob.md`).
 #[cfg(all(target_os = "none", target_abi = "eabihf"))]
 mod golden {
-    pub const CONTROL_MEAN_MILLI: u64 = 159_610;
-    pub const CONTROL_MAX: u32 = 179;
-    pub const INTERRUPT_MEAN_MILLI: u64 = 269_589;
-    pub const INTERRUPT_MAX: u32 = 318;
+    pub const CONTROL_MEAN_MILLI: u64 = 210_599;
+    pub const CONTROL_MAX: u32 = 237;
+    pub const INTERRUPT_MEAN_MILLI: u64 = 320_578;
+    pub const INTERRUPT_MAX: u32 = 377;
 }
 
 /// Prints a figure (thousandths of an instruction) against its golden value; false when
@@ -684,7 +693,10 @@ mod app {
             let gap = previous.wrapping_sub(t0);
 
             cost.longest_gap = cost.longest_gap.max(gap);
-            if gap > (RELOAD + 1) * 3 / 2 {
+            if gap >= (RELOAD + 1) * 2 {
+                if cost.missed == 0 {
+                    cost.first_miss = sim.tick;
+                }
                 cost.missed += 1;
             }
         }

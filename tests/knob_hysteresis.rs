@@ -19,6 +19,9 @@ fn hold(config: &KnobConfig, at: f64, tremor: f64, seconds: f64) -> (usize, usiz
     let mut knob = Knob::<f64>::new(config, at - 0.25 * WIDTH).unwrap();
     let mut plant = Plant::new(INERTIA, dt, 1.0);
     plant.theta = at;
+    // At rest where the encoder reads (a jump there would be a sensor fault): reset
+    // walks the index from detent 0.
+    knob.reset(plant.read());
     // The finger: 20 N·m/rad, aimed past `at` by what the detent's pull there deflects it.
     let k_hand = 20.0;
     let detent_pull = STIFFNESS * 0.5 * WIDTH;

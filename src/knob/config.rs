@@ -109,6 +109,7 @@ pub struct KnobConfig {
     pub(crate) magnets_asked: usize,
     pub(crate) magnet_stiffness: f64,
     pub(crate) magnet_radius: Option<f64>,
+    pub(crate) max_speed: Option<f64>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -187,6 +188,7 @@ impl KnobConfig {
             magnets_asked: 0,
             magnet_stiffness: 0.0,
             magnet_radius: None,
+            max_speed: None,
         }
     }
 
@@ -449,6 +451,30 @@ impl KnobConfig {
         self
     }
 
+    /// The fastest the rotor may turn, rad/s: above it the knob commands no torque
+    /// (against a runaway, as SmartKnob cuts its torque above 60 rad/s), and a reading
+    /// that moves farther than `max_speed·dt` from the last is not used
+    /// ([`SensorFault`](crate::knob::SensorFault)). Default: none (only the jolt
+    /// the motor and a hand can give bounds a reading).
+    ///
+    /// ```
+    /// use stiffspring::{Knob, KnobConfig};
+    /// use stiffspring::knob::SensorFault;
+    ///
+    /// let config = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).max_speed(60.0);
+    /// let mut knob = Knob::<f32>::new(&config, 0.0)?;
+    /// assert_eq!(knob.update(0.035).events.sensor, None); // 35 rad/s
+    /// // 0.07 rad in the next 1 ms is 70 rad/s: the torque goes off.
+    /// let out = knob.update(0.105);
+    /// assert_eq!((out.events.sensor, out.torque), (Some(SensorFault::TooFast), 0.0));
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    #[must_use]
+    pub const fn max_speed(mut self, max_speed: f64) -> Self {
+        self.max_speed = Some(max_speed);
+        self
+    }
+
     /// How close a magnetic detent captures the rotor (default: a quarter of the smallest
     /// spacing of the magnets, or 0.1 rad for a single one). Capture zones widened by the
     /// hysteresis must not overlap.
@@ -462,5 +488,36 @@ impl KnobConfig {
     pub const fn magnet_radius(mut self, radius: f64) -> Self {
         self.magnet_radius = Some(radius);
         self
+    }
+
+    /// This layout moved, endstops, detents, magnets and return centre alike, so that
+    /// its detent `index` (clamped to the detents it has) is centred on `centre`: what
+    /// [`Anchor::CurrentDetent`](crate::knob::Anchor::CurrentDetent) gives a running knob.
+    /// A configuration without detents is moved so that its lower endstop (or its
+    /// origin) is on `centre`.
+    pub(crate) fn shifted_to(&self, index: i32, centre: f64) -> KnobConfig {
+        let index = f64::from(index.max(0));
+        let here = match (self.detents, self.endstops) {
+            (DetentSpacing::Count(n), Some((lo, hi))) if n >= 2 => {
+                let last = f64::from(n - 1);
+                lo + index.min(last) * (hi - lo) / last
+            }
+            (DetentSpacing::Width(w), Some((lo, hi))) if w > 0.0 => {
+                let last = libm::floor((hi - lo) / w + 1e-9).max(0.0);
+                lo + index.min(last) * w
+            }
+            (DetentSpacing::Width(w), None) => self.detent_origin + index * w,
+            (_, Some((lo, _))) => lo,
+            (_, None) => self.detent_origin,
+        };
+        let delta = centre - here;
+        let mut moved = *self;
+        moved.endstops = self.endstops.map(|(lo, hi)| (lo + delta, hi + delta));
+        moved.detent_origin = self.detent_origin + delta;
+        moved.return_centre = self.return_centre + delta;
+        for m in moved.magnets.iter_mut().take(self.magnet_count) {
+            *m += delta;
+        }
+        moved
     }
 }

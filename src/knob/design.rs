@@ -34,6 +34,10 @@ const ENDSTOP_MULTIPLES: [f64; 7] = [4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625];
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Design {
     pub(crate) dt: f64,
+    /// The rotor's inertia, kg·m² (the sensor screen's jolt).
+    pub(crate) inertia: f64,
+    /// The configured maximum speed, rad/s (checked positive).
+    pub(crate) max_speed: Option<f64>,
     pub(crate) torque_limit: f64,
     /// One encoder count, rad: the rest zone.
     pub(crate) count: f64,
@@ -463,6 +467,8 @@ const fn finish<S: Scalar>(c: &Checked, damping: f64, endstop: f64) -> Result<De
     }
     Ok(Design {
         dt,
+        inertia: c.inertia,
+        max_speed: c.max_speed,
         torque_limit,
         count: c.count,
         reach,

@@ -19,6 +19,10 @@ use crate::scalar::Scalar;
 /// over the next periods instead of stalling the loop.
 pub(crate) const MAX_WALK: usize = 4;
 
+/// The most detents one [`Ladder::seek`] walks; a knob taken up farther away than this
+/// walks the rest at [`MAX_WALK`] detents a period.
+pub(crate) const MAX_SEEK: usize = 4096;
+
 /// The detent grid: the current index and centre, and the switching threshold.
 ///
 /// # Centres far from the origin
@@ -177,8 +181,17 @@ impl<S: Scalar> Ladder<S> {
     /// number of detents it moved, signed.
     #[inline]
     pub(crate) fn update(&mut self, angle: S) -> i8 {
-        let mut moved = 0i8;
-        for _ in 0..MAX_WALK {
+        // At most MAX_WALK (4) detents: the sum fits an i8.
+        self.walk::<MAX_WALK>(angle) as i8
+    }
+
+    /// Walks the index toward `angle`, at most `LIMIT` detents; returns how many it
+    /// moved. The walk is monotone (a switching point lies at least half a width from its
+    /// centre), so it ends.
+    #[inline(always)]
+    fn walk<const LIMIT: usize>(&mut self, angle: S) -> i32 {
+        let mut moved = 0i32;
+        for _ in 0..LIMIT {
             let e = angle.sub(self.centre);
             if e > self.threshold && self.index < self.max_index {
                 self.up();
@@ -197,6 +210,13 @@ impl<S: Scalar> Ladder<S> {
     #[inline(always)]
     pub(crate) fn index(&self) -> i32 {
         self.index
+    }
+
+    /// Walks the index to `angle` as [`Ladder::update`] does, without its limit of
+    /// [`MAX_WALK`] detents, up to [`MAX_SEEK`] (reset, and taking up the readings after a
+    /// sensor fault); returns how many detents it moved.
+    pub(crate) fn seek(&mut self, angle: S) -> i32 {
+        self.walk::<MAX_SEEK>(angle)
     }
 
     /// The current detent centre.

@@ -39,6 +39,46 @@ pub struct KnobEvents {
     pub endstop_hit: Option<Endstop>,
     /// A magnetic detent captured the rotor this period (its index in the sorted list).
     pub magnet_captured: Option<u8>,
+    /// This period's reading was not used: it cannot be physical (see [`SensorFault`]).
+    /// The knob held its last torque (for two periods, then none) and waits for readings
+    /// that agree again.
+    pub sensor: Option<SensorFault>,
+    /// The knob took up the readings again after a fault: its angle, velocity and
+    /// detent jumped to what the encoder reads, and the torque fades back in.
+    pub resynced: bool,
+}
+
+/// Why a reading was not used.
+///
+/// ```
+/// use stiffspring::{Knob, KnobConfig};
+/// use stiffspring::knob::SensorFault;
+///
+/// let config = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).detent_width(0.2).detent_stiffness(0.05);
+/// let mut knob = Knob::<f32>::new(&config, 0.0)?;
+/// let out = knob.update(f32::NAN);
+/// assert_eq!(out.events.sensor, Some(SensorFault::NotANumber));
+/// assert_eq!(out.torque, 0.0); // the torque of the last good reading, held
+/// # Ok::<(), stiffspring::knob::KnobError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum SensorFault {
+    /// A NaN (float backends).
+    NotANumber,
+    /// An infinite angle, or one beyond the range the knob's arithmetic holds
+    /// ([`Knob::reach`](crate::Knob::reach)).
+    OutOfRange,
+    /// A reading too far from where the rotor can be: its change of velocity since the
+    /// last reading is more than the motor and a hand can give the rotor in one period
+    /// ([`Knob::max_jolt`](crate::Knob::max_jolt)), or it moved farther than the
+    /// configured [`max_speed`](crate::KnobConfig::max_speed) allows in one period
+    /// after a reading that did not.
+    Jump,
+    /// Readings that agree with each other, of a rotor turning faster than the configured
+    /// [`max_speed`](crate::KnobConfig::max_speed): the torque stays off until it slows
+    /// down.
+    TooFast,
 }
 
 impl KnobEvents {
@@ -51,6 +91,10 @@ impl KnobEvents {
     /// assert!(hit.any());
     /// ```
     pub fn any(&self) -> bool {
-        self.detent_step != 0 || self.endstop_hit.is_some() || self.magnet_captured.is_some()
+        self.detent_step != 0
+            || self.endstop_hit.is_some()
+            || self.magnet_captured.is_some()
+            || self.sensor.is_some()
+            || self.resynced
     }
 }

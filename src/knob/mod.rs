@@ -19,13 +19,16 @@
 //! # The torque law
 //!
 //! ```text
-//! τ = −K_zone·dz(e) − B·v,      v ← v + α·((θ_n − θ_{n−1})/dt − v)
+//! τ = −K_zone·knee(dz(e)) − B·v,   p ← clamp(p, θ − w, θ + w),   v ← v + α·((p_n − p_{n−1})/dt − v)
 //! ```
 //!
 //! - `e` is the extension from the rest point (the detent centre, the endstop, the magnet,
-//!   the return centre, weighted by their stiffnesses), `dz` a **rest zone** of one encoder
-//!   count: a centre that falls between two counts no longer pushes the rotor back and
-//!   forth.
+//!   the return centre, weighted by their stiffnesses), `dz` a **rest zone** of
+//!   [`REST_COUNTS`] counts followed by a soft knee of up to [`KNEE_COUNTS`], and the
+//!   damper sees the angle through a play of [`PLAY_COUNTS`]: the knob is silent at rest
+//!   (`law.rs` has why; `docs/knob.md` the measurements).
+//! - **Sensor faults**: a reading that is NaN, out of reach, or farther than the motor and
+//!   a hand can move the rotor in a period is not used (`screen.rs`, [`SensorFault`]).
 //! - `v` is the backward difference of the angles through a **low-pass filter**. A
 //!   backward difference of counts is a one-count kick; unfiltered, the damper turns it
 //!   into an impulse that can reverse a slow rotor and pump energy (the limit cycles of
@@ -115,8 +118,9 @@
 //! # Cost
 //!
 //! `Knob::update` on QEMU (`scripts/cost`; 1 kHz, 16 detents between endstops, an encoder
-//! swept through both stops): 136 instructions on the Cortex-M4F in `f32`, 199 in
-//! `I16F16`; 586 on the Cortex-M0 in `I16F16`. No `Result`, no division, no allocation.
+//! swept up and down through both stops): 215.5 instructions on the Cortex-M4F in `f32`,
+//! 285.8 in `I16F16`; 718.6 on the Cortex-M0 in `I16F16` (`docs/knob.md`). No `Result`,
+//! no division, no allocation.
 //!
 //! ```
 //! use stiffspring::{Knob, KnobConfig};
@@ -128,14 +132,21 @@
 //!     .detent_stiffness(0.05); // N·m/rad
 //! let mut knob = Knob::<f32>::new(&config, 0.0)?;
 //!
-//! // Turned a little past the first detent: pulled back.
-//! let out = knob.update(0.05);
+//! // Turned at 1 rad/s a little past the first detent: pulled back.
+//! let mut out = knob.update(0.0);
+//! for n in 1..=50 {
+//!     out = knob.update(n as f32 * 1e-3);
+//! }
 //! assert!(out.torque < 0.0 && out.torque >= -1.0);
 //! assert_eq!(out.detent, 0);
-//! // Past the snap point: the next detent pulls it forward.
-//! let out = knob.update(0.2 * 0.56);
-//! assert_eq!(out.detent, 1);
-//! assert_eq!(out.events.detent_step, 1);
+//! // On past the snap point (0.56 of the 0.2 rad width): the next detent pulls it forward.
+//! let mut steps = 0;
+//! for n in 51..=120 {
+//!     out = knob.update(n as f32 * 1e-3);
+//!     steps += out.events.detent_step;
+//! }
+//! assert_eq!((out.detent, steps), (1, 1));
+//! assert!(out.torque > 0.0);
 //! # Ok::<(), stiffspring::knob::KnobError>(())
 //! ```
 
@@ -148,6 +159,8 @@ mod detents;
 mod error;
 mod events;
 mod law;
+mod reconfigure;
+mod screen;
 pub mod stability;
 mod validate;
 
@@ -156,7 +169,10 @@ pub use compiled::KnobDesign;
 pub use compiled::refusal;
 pub use config::{KnobConfig, Latency, MAX_MAGNETS};
 pub use error::{KnobError, Limit, Zone};
-pub use events::{Endstop, KnobEvents};
+pub use events::{Endstop, KnobEvents, SensorFault};
+pub use law::{KNEE_COUNTS, PLAY_COUNTS, REST_COUNTS};
+pub use reconfigure::Anchor;
+pub use screen::{AGREE_STEPS, FADE_PERIODS, HOLD_PERIODS};
 pub use stability::{
     DAMPING_RATIO_RANGE, DECAY_FRACTION, INERTIA_UNCERTAINTY, LoopCoefficients, MIN_DAMPING_RATIO,
     characteristic_polynomial, is_stable, meets_guarantee, spectral_radius,
@@ -166,6 +182,8 @@ pub use validate::MIN_LOOP_RATE;
 use crate::error::Parameter;
 use crate::scalar::Scalar;
 use detents::{Ladder, Magnets};
+use law::Shape;
+use screen::Mode;
 use validate::nearest_index;
 
 /// What one control period gives: the torque to command and the detent state.
@@ -191,12 +209,12 @@ pub struct KnobOutput<S: Scalar> {
 
 /// The gains of one zone: the stiffness of the layer that joins the detents and the
 /// return spring there (magnet or endstop), per radian of the torque limit, and the rest
-/// zone in torque (the zone's stiffness times one count).
+/// zone and knee in torque (the zone's stiffness times their widths).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 struct ZoneGains<S: Scalar> {
     other: S,
-    rest: S,
+    shape: Shape<S>,
 }
 
 /// Zones: inside the range and free, inside and held by a magnet, beyond an endstop.
@@ -228,7 +246,32 @@ const BEYOND: usize = 2;
 pub struct Knob<S: Scalar> {
     lowest: S,
     highest: S,
+    /// The last reading the law used.
     previous: S,
+    /// Its movement from the one before (radians per period).
+    last_step: S,
+    /// The play's output, which the damper differentiates, and its half-width.
+    held: S,
+    play: S,
+    /// The screen (`screen.rs`): the largest change of movement per period a good
+    /// reading has while tracking, negative otherwise, so that the hot path's test fails;
+    /// the same bound whatever the mode; the largest movement per period.
+    gate: S,
+    jolt: S,
+    max_step: S,
+    mode: Mode,
+    /// The last torque commanded, held after a bad reading.
+    last_torque: S,
+    /// While lost: the last reading and its step from the one before.
+    candidate: S,
+    candidate_step: S,
+    /// `1/FADE_PERIODS`, the fade's step.
+    fade_unit: S,
+    /// After a reconfiguration: the old layout's torque less the new one's, and the most
+    /// it moves to zero per period (one count's torque in the free zone, at least
+    /// 1/256 of the limit).
+    offset: S,
+    slew: S,
     /// The damper's filtered torque times the state scale (a power of two up to
     /// `law::STATE_SCALE`), a fraction of the limit.
     damping_state: S,
@@ -240,6 +283,7 @@ pub struct Knob<S: Scalar> {
     detent_gain: S,
     return_gain: S,
     zones: [ZoneGains<S>; 3],
+    floor: S,
     bounded: bool,
     lo: S,
     hi: S,
@@ -248,6 +292,8 @@ pub struct Knob<S: Scalar> {
     lo_release: S,
     hi_release: S,
     return_centre: S,
+    /// `1/width` of the detents (0 without), for [`Knob::detent_fraction`].
+    inverse_width: S,
     ladder: Ladder<S>,
     magnets: Magnets<S>,
     beyond: Option<Endstop>,
@@ -256,9 +302,10 @@ pub struct Knob<S: Scalar> {
     damping: f64,
     filter_time: f64,
     rest_zone: f64,
+    knee: f64,
+    max_speed: Option<f64>,
     loop_coefficients: [Option<LoopCoefficients>; 3],
     zone_stiffness: [f64; 3],
-    grid: Option<(f64, f64, (i32, i32))>,
 }
 
 impl<S: Scalar> Knob<S> {
@@ -354,19 +401,41 @@ impl<S: Scalar> Knob<S> {
         }
         let limit = v.torque_limit;
         let per_rad = |k: f64| S::from_f64(k / limit);
-        let rest = |k: f64| S::from_f64(k / limit * v.count);
+        let rest_angle = law::REST_COUNTS * v.count;
+        // The knee: KNEE_COUNTS counts, or a quarter of the way from the rest zone to
+        // the switching point where a detent is narrower.
+        let knee_angle = match v.grid {
+            Some(g) => {
+                let threshold = g.threshold;
+                (law::KNEE_COUNTS * v.count).min(0.25 * (threshold - rest_angle))
+            }
+            None => law::KNEE_COUNTS * v.count,
+        };
+        let shape = |k: f64| {
+            let knee = k / limit * knee_angle;
+            Shape {
+                rest: S::from_f64(k / limit * rest_angle),
+                knee: S::from_f64(knee),
+                half_knee: S::from_f64(0.5 * knee),
+                curvature: if knee > 0.0 {
+                    S::from_f64(0.5 / knee)
+                } else {
+                    S::ZERO
+                },
+            }
+        };
         let zones = [
             ZoneGains {
                 other: S::ZERO,
-                rest: rest(v.zone_stiffness[FREE]),
+                shape: shape(v.zone_stiffness[FREE]),
             },
             ZoneGains {
                 other: per_rad(v.magnet),
-                rest: rest(v.zone_stiffness[MAGNET]),
+                shape: shape(v.zone_stiffness[MAGNET]),
             },
             ZoneGains {
                 other: per_rad(v.endstop),
-                rest: rest(v.zone_stiffness[BEYOND]),
+                shape: shape(v.zone_stiffness[BEYOND]),
             },
         ];
         let ladder = match v.grid {
@@ -385,10 +454,29 @@ impl<S: Scalar> Knob<S> {
             v.magnet_radius + v.hysteresis,
         );
         let (lo, hi) = v.bounds.unwrap_or((-v.reach, v.reach));
+        // The most the rotor's movement per period can change: the torque limit, three
+        // times more from a hand, on half the inertia, plus the encoder's rounding.
+        let jolt = screen::JOLT_TORQUES * limit / (0.5 * v.inertia) * v.dt * v.dt
+            + screen::JOLT_COUNTS * v.count;
+        let jolt = jolt.min(v.reach);
+        let max_step = v.max_speed.map_or(v.reach, |w| (w * v.dt).min(v.reach));
         let mut knob = Knob {
             lowest: S::from_f64(-v.reach),
             highest: S::from_f64(v.reach),
             previous: initial_angle,
+            last_step: S::ZERO,
+            held: initial_angle,
+            play: S::from_f64(law::PLAY_COUNTS * v.count),
+            gate: S::from_f64(jolt),
+            jolt: S::from_f64(jolt),
+            max_step: S::from_f64(max_step),
+            mode: Mode::Tracking,
+            last_torque: S::ZERO,
+            candidate: initial_angle,
+            candidate_step: S::ZERO,
+            fade_unit: S::from_f64(1.0 / f64::from(screen::FADE_PERIODS)),
+            offset: S::ZERO,
+            slew: S::from_f64((v.zone_stiffness[FREE] / limit * v.count).max(1.0 / 256.0)),
             damping_state: S::ZERO,
             damping_gain: S::from_f64(v.state_scale * v.damping / (limit * v.dt)),
             unscale: S::coef(1.0 / v.state_scale),
@@ -398,32 +486,41 @@ impl<S: Scalar> Knob<S> {
             detent_gain: per_rad(v.detent),
             return_gain: per_rad(v.ret),
             zones,
+            floor: S::from_f64(law::TORQUE_FLOOR),
             bounded: v.bounds.is_some(),
             lo: S::from_f64(lo),
             hi: S::from_f64(hi),
-            lo_hit: S::from_f64(lo - v.count),
-            hi_hit: S::from_f64(hi + v.count),
+            // Hit past the rest zone and the knee: the spring is at full stiffness there.
+            lo_hit: S::from_f64(lo - rest_angle - knee_angle),
+            hi_hit: S::from_f64(hi + rest_angle + knee_angle),
             lo_release: S::from_f64(lo + v.hysteresis),
             hi_release: S::from_f64(hi - v.hysteresis),
             return_centre: S::from_f64(v.return_centre),
+            inverse_width: match v.grid {
+                Some(g) => S::from_f64(1.0 / g.width),
+                None => S::ZERO,
+            },
             ladder,
             magnets,
             beyond: None,
             torque_limit: limit,
             damping: v.damping,
             filter_time: v.dt * (1.0 - v.alpha) / v.alpha,
-            rest_zone: v.count,
+            rest_zone: rest_angle,
+            knee: knee_angle,
+            max_speed: v.max_speed,
             loop_coefficients: v.zones,
             zone_stiffness: v.zone_stiffness,
-            grid: v.grid.map(|g| (g.origin, g.width, g.range)),
         };
         knob.reset(initial_angle);
         Ok(knob)
     }
 
     /// Puts the knob at rest at `angle`: the previous angle (so the next velocity is
-    /// zero), the damper's state, the nearest detent, the endstop and magnet states. For
-    /// after the motor was off, or the encoder re-zeroed.
+    /// zero), the damper's state, the nearest detent, the endstop and magnet states, and
+    /// the sensor screen (a fault is forgotten). For after the motor was off, or the
+    /// encoder re-zeroed. A NaN or out-of-range `angle` (see [`Knob::reach`]) keeps the
+    /// last good angle.
     ///
     /// ```
     /// use stiffspring::{Knob, KnobConfig};
@@ -436,47 +533,58 @@ impl<S: Scalar> Knob<S> {
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn reset(&mut self, angle: S) {
-        let angle = self.sanitize(angle);
+        let angle = if self.in_reach(angle) {
+            angle
+        } else {
+            self.previous
+        };
         self.previous = angle;
+        self.held = angle;
+        self.last_step = S::ZERO;
         self.damping_state = S::ZERO;
-        if let Some((origin, width, range)) = self.grid {
-            self.ladder
-                .set_index(nearest_index(angle.to_f64(), origin, width, range));
-        }
+        self.last_torque = S::ZERO;
+        self.mode = Mode::Tracking;
+        self.gate = self.jolt;
+        let _ = self.ladder.seek(angle);
         self.magnets.reset();
         let _ = self.magnets.update(angle);
-        self.beyond = if self.bounded && angle > self.hi_hit {
+        self.beyond = self.beyond_at(angle);
+    }
+
+    /// True for an angle inside the range the arithmetic holds (never for a NaN).
+    #[inline(always)]
+    fn in_reach(&self, angle: S) -> bool {
+        angle <= self.highest && angle >= self.lowest
+    }
+
+    /// The endstop the rotor is past at `angle` (beyond its rest zone and knee).
+    fn beyond_at(&self, angle: S) -> Option<Endstop> {
+        if self.bounded && angle > self.hi_hit {
             Some(Endstop::Max)
         } else if self.bounded && angle < self.lo_hit {
             Some(Endstop::Min)
         } else {
             None
-        };
-    }
-
-    /// Clamps an angle into the range the arithmetic is safe in; a NaN (a float backend
-    /// only) holds the previous angle.
-    #[inline(always)]
-    fn sanitize(&self, angle: S) -> S {
-        if angle > self.highest {
-            self.highest
-        } else if angle < self.lowest {
-            self.lowest
-        } else if angle >= self.lowest {
-            angle
-        } else {
-            self.previous
         }
     }
 
     /// One control period: the torque for the measured `angle` (radians), with the
-    /// velocity taken as the backward difference from the previous call's angle.
+    /// velocity taken from the movement of the angles.
+    ///
+    /// A reading that cannot be physical (NaN, infinite, beyond [`Knob::reach`], or
+    /// moving farther than [`Knob::max_jolt`] or the configured
+    /// [`max_speed`](KnobConfig::max_speed) allow) is not used: the knob holds its last
+    /// torque for [`HOLD_PERIODS`] periods, then commands none, and reports
+    /// [`KnobEvents::sensor`]; it takes the readings up again once [`AGREE_STEPS`] steps
+    /// agree, reports [`KnobEvents::resynced`], and fades the torque in over
+    /// [`FADE_PERIODS`] periods. A single bad reading followed by one that continues the
+    /// motion costs one held period and nothing else.
     ///
     /// ```
     /// use stiffspring::{Knob, KnobConfig};
     ///
     /// let config = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).endstops(-1.0, 1.0);
-    /// let mut knob = Knob::<f32>::new(&config, 0.0)?;
+    /// let mut knob = Knob::<f32>::new(&config, 0.99)?;
     /// let out = knob.update(1.01); // past the upper endstop
     /// assert!(out.torque < 0.0);
     /// assert_eq!(out.events.endstop_hit, Some(stiffspring::knob::Endstop::Max));
@@ -484,14 +592,29 @@ impl<S: Scalar> Knob<S> {
     /// ```
     #[inline]
     pub fn update(&mut self, angle: S) -> KnobOutput<S> {
-        let angle = self.sanitize(angle);
-        let u = angle.sub(self.previous);
-        self.period(angle, u)
+        let step = angle.sub(self.previous);
+        let surprise = step.sub(self.last_step);
+        // NaN fails every comparison; a knob not tracking has a negative gate.
+        if surprise.abs() <= self.gate
+            && step.abs() <= self.max_step
+            && (S::RESOLUTION > 0.0 || self.in_reach(angle))
+        {
+            self.last_step = step;
+            let held = law::play(self.held, angle, self.play);
+            let u = held.sub(self.held);
+            self.held = held;
+            let out = self.period(angle, u);
+            self.last_torque = out.torque;
+            out
+        } else {
+            self.recover(angle, None)
+        }
     }
 
     /// One control period with the velocity supplied by the caller (radians per second),
     /// for firmware that has an observer or a hardware velocity. It goes through the same
-    /// filter; the guarantee is for the backward difference of the angles.
+    /// filter (not through the play) and the same screen of the angle; the guarantee is
+    /// for the angles' movement.
     ///
     /// ```
     /// use stiffspring::{Knob, KnobConfig};
@@ -504,19 +627,252 @@ impl<S: Scalar> Knob<S> {
     /// ```
     #[inline]
     pub fn update_with_velocity(&mut self, angle: S, velocity: S) -> KnobOutput<S> {
-        let angle = self.sanitize(angle);
         // Clamped like an angle difference; a NaN (float backends only) is no motion.
         let u = velocity.mul_coef(self.step);
-        let u = if u > self.highest {
-            self.highest
-        } else if u < self.lowest {
-            self.lowest
-        } else if u >= self.lowest {
+        let u = if u > self.max_step {
+            self.max_step
+        } else if u < self.max_step.neg() {
+            self.max_step.neg()
+        } else if u >= self.max_step.neg() {
             u
         } else {
             S::ZERO
         };
-        self.period(angle, u)
+        let step = angle.sub(self.previous);
+        let surprise = step.sub(self.last_step);
+        if surprise.abs() <= self.gate && step.abs() <= self.max_step && self.in_reach(angle) {
+            self.last_step = step;
+            self.held = law::play(self.held, angle, self.play);
+            let out = self.period(angle, u);
+            self.last_torque = out.torque;
+            out
+        } else {
+            self.recover(angle, Some(u))
+        }
+    }
+
+    /// The cold path of the screen (`screen.rs`): a reading that failed the hot test,
+    /// or any reading while the knob is not tracking.
+    #[cold]
+    #[inline(never)]
+    fn recover(&mut self, angle: S, velocity: Option<S>) -> KnobOutput<S> {
+        let fault = if angle.partial_cmp(&angle).is_none() {
+            Some(SensorFault::NotANumber)
+        } else if !self.in_reach(angle) {
+            Some(SensorFault::OutOfRange)
+        } else {
+            None
+        };
+        let step = angle.sub(self.previous);
+        let fits = |bound: S, x: S| x.abs() <= bound;
+        match (self.mode, fault) {
+            // Fading, and the reading is good: the law, with the torque faded in.
+            (Mode::Fading { step: n }, None)
+                if fits(self.jolt, step.sub(self.last_step)) && fits(self.max_step, step) =>
+            {
+                self.last_step = step;
+                let held = law::play(self.held, angle, self.play);
+                let u = velocity.unwrap_or(held.sub(self.held));
+                self.held = held;
+                let mut out = self.period(angle, u);
+                let n = n + 1;
+                let mut fade = S::ZERO;
+                for _ in 0..n {
+                    fade = fade.add(self.fade_unit);
+                }
+                out.torque = out.torque.mul(fade);
+                if n >= screen::FADE_PERIODS {
+                    self.mode = Mode::Tracking;
+                    self.gate = self.jolt;
+                } else {
+                    self.mode = Mode::Fading { step: n };
+                }
+                self.last_torque = out.torque;
+                out
+            }
+            // Reconfigured, and the reading is good: the law, with the old torque's offset
+            // moved toward zero by one count's torque.
+            (Mode::Blending, None)
+                if fits(self.jolt, step.sub(self.last_step)) && fits(self.max_step, step) =>
+            {
+                self.last_step = step;
+                let held = law::play(self.held, angle, self.play);
+                let u = velocity.unwrap_or(held.sub(self.held));
+                self.held = held;
+                let mut out = self.period(angle, u);
+                let o = self.offset;
+                self.offset = if o > self.slew {
+                    o.sub(self.slew)
+                } else if o < self.slew.neg() {
+                    o.add(self.slew)
+                } else {
+                    S::ZERO
+                };
+                out.torque = law::torque(out.torque.neg(), self.offset.neg(), self.floor);
+                if self.offset == S::ZERO {
+                    self.mode = Mode::Tracking;
+                    self.gate = self.jolt;
+                }
+                self.last_torque = out.torque;
+                out
+            }
+            // One bad reading, and this one continues the motion from before it: go on
+            // as if the missed period had moved the rotor at the same speed.
+            (Mode::Holding { missed: 1 }, None)
+                if fits(
+                    self.jolt.add(self.jolt).add(self.jolt),
+                    step.sub(self.last_step).sub(self.last_step),
+                ) && fits(self.max_step, step.sub(self.last_step)) =>
+            {
+                self.previous = self.previous.add(self.last_step);
+                self.held = self.held.add(self.last_step);
+                self.mode = Mode::Tracking;
+                self.gate = self.jolt;
+                // (A caller's velocity is taken up again from the next period.)
+                self.update(angle)
+            }
+            // A good reading of a rotor turning too fast for the configured maximum
+            // speed, in step with the one before: the torque goes off at once.
+            (Mode::Tracking | Mode::Fading { .. } | Mode::Blending, None)
+                if !fits(self.max_step, step) && fits(self.jolt, step.sub(self.last_step)) =>
+            {
+                self.lose(angle, step, 2);
+                self.fault_output(Some(SensorFault::TooFast), S::ZERO)
+            }
+            // The first bad reading: hold the last torque.
+            (Mode::Tracking | Mode::Fading { .. } | Mode::Blending, _) => {
+                self.mode = Mode::Holding { missed: 1 };
+                self.gate = S::ONE.neg();
+                // A reconfiguration's blend ends here: the torque fades in from zero
+                // when the readings are taken up again.
+                self.offset = S::ZERO;
+                self.candidate = angle;
+                self.candidate_step = S::ZERO;
+                let fault = fault.unwrap_or(SensorFault::Jump);
+                self.fault_output(Some(fault), self.last_torque)
+            }
+            (Mode::Holding { .. } | Mode::Lost { .. }, Some(fault)) => {
+                let missed = match self.mode {
+                    Mode::Holding { missed } => missed.saturating_add(1),
+                    _ => u8::MAX,
+                };
+                if missed <= screen::HOLD_PERIODS {
+                    self.mode = Mode::Holding { missed };
+                    self.fault_output(Some(fault), self.last_torque)
+                } else {
+                    self.mode = Mode::Lost { agree: 0 };
+                    self.fault_output(Some(fault), S::ZERO)
+                }
+            }
+            (Mode::Holding { missed }, None) => {
+                // A good reading that does not continue the motion: count agreement
+                // from here, and hold while the hold lasts.
+                let agree = self.agreement(angle, 1);
+                let torque = if missed < screen::HOLD_PERIODS {
+                    self.last_torque
+                } else {
+                    S::ZERO
+                };
+                if agree > screen::AGREE_STEPS {
+                    return self.resync(angle);
+                }
+                self.mode = if missed < screen::HOLD_PERIODS {
+                    Mode::Holding { missed: missed + 1 }
+                } else {
+                    Mode::Lost { agree }
+                };
+                let reason = if fits(self.max_step, step) {
+                    SensorFault::Jump
+                } else {
+                    SensorFault::TooFast
+                };
+                self.fault_output(Some(reason), torque)
+            }
+            (Mode::Lost { agree }, None) => {
+                let agree = self.agreement(angle, agree);
+                if agree > screen::AGREE_STEPS {
+                    return self.resync(angle);
+                }
+                self.mode = Mode::Lost { agree };
+                let too_fast = agree >= 2 && !fits(self.max_step, self.candidate_step);
+                let reason = if too_fast {
+                    SensorFault::TooFast
+                } else {
+                    SensorFault::Jump
+                };
+                self.fault_output(Some(reason), S::ZERO)
+            }
+        }
+    }
+
+    /// Counts how many readings in a row agree, with `angle` the newest: `agree` so far
+    /// (0: none yet). Steps agree when each is within the jolt of the one before.
+    fn agreement(&mut self, angle: S, agree: u8) -> u8 {
+        let d = angle.sub(self.candidate);
+        let agree = match agree {
+            0 => 1,
+            1 => 2,
+            n if d.sub(self.candidate_step).abs() <= self.jolt => n.saturating_add(1),
+            _ => 2,
+        };
+        self.candidate_step = d;
+        self.candidate = angle;
+        agree
+    }
+
+    /// Enters the lost state at `angle`, moving by `step`, with `agree` readings agreeing.
+    fn lose(&mut self, angle: S, step: S, agree: u8) {
+        self.mode = Mode::Lost { agree };
+        self.gate = S::ONE.neg();
+        self.candidate = angle;
+        self.candidate_step = step;
+    }
+
+    /// Takes up the readings again at `angle`, moving as the agreeing steps did.
+    fn resync(&mut self, angle: S) -> KnobOutput<S> {
+        let d = self.candidate_step;
+        if d.abs() > self.max_step {
+            // Agreeing, but too fast: stay off.
+            self.mode = Mode::Lost {
+                agree: screen::AGREE_STEPS,
+            };
+            return self.fault_output(Some(SensorFault::TooFast), S::ZERO);
+        }
+        self.previous = angle;
+        self.last_step = d;
+        self.held = law::play(angle.sub(d), angle, self.play);
+        // The filter's steady state at this movement: no kick when the damper resumes.
+        self.damping_state = d.mul(self.damping_gain);
+        let moved = self.ladder.seek(angle);
+        let (_, _, captured) = self.magnets.update(angle);
+        let beyond = self.beyond_at(angle);
+        let hit = if beyond != self.beyond { beyond } else { None };
+        self.beyond = beyond;
+        self.mode = Mode::Fading { step: 0 };
+        self.last_torque = S::ZERO;
+        KnobOutput {
+            torque: S::ZERO,
+            detent: self.ladder.index(),
+            events: KnobEvents {
+                detent_step: moved.clamp(i8::MIN.into(), i8::MAX.into()) as i8,
+                endstop_hit: hit,
+                magnet_captured: captured,
+                resynced: true,
+                ..KnobEvents::default()
+            },
+        }
+    }
+
+    /// The output of a period whose reading was not used.
+    fn fault_output(&mut self, fault: Option<SensorFault>, torque: S) -> KnobOutput<S> {
+        KnobOutput {
+            torque,
+            detent: self.ladder.index(),
+            events: KnobEvents {
+                sensor: fault,
+                ..KnobEvents::default()
+            },
+        }
     }
 
     #[inline(always)]
@@ -549,8 +905,8 @@ impl<S: Scalar> Knob<S> {
         } else {
             (FREE, S::ZERO)
         };
-        // An endstop is hit past its rest zone, and again only after coming back inside
-        // by the hysteresis.
+        // An endstop is hit past its rest zone and knee, and again only after coming
+        // back inside by the hysteresis.
         match self.beyond {
             None if self.bounded && angle > self.hi_hit => {
                 self.beyond = Some(Endstop::Max);
@@ -573,12 +929,13 @@ impl<S: Scalar> Knob<S> {
                 angle.sub(self.return_centre),
             ),
             (self.detent_gain, z.other, self.return_gain),
-            z.rest,
+            &z.shape,
         );
         KnobOutput {
             torque: law::torque(
                 spring,
                 law::damping_torque(self.damping_state, self.unscale),
+                self.floor,
             ),
             detent: self.ladder.index(),
             events,
@@ -595,6 +952,108 @@ impl<S: Scalar> Knob<S> {
     /// ```
     pub fn detent(&self) -> i32 {
         self.ladder.index()
+    }
+
+    /// The centre of the current detent, radians (the angle the knob pulls toward; the
+    /// lower endstop, or 0, without detents).
+    ///
+    /// ```
+    /// use stiffspring::{Knob, KnobConfig};
+    /// let c = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).endstops(0.0, 1.0).detent_count(5);
+    /// let knob = Knob::<f64>::new(&c, 0.74)?;
+    /// assert_eq!(knob.detent_centre(), 0.75);
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn detent_centre(&self) -> S {
+        self.ladder.centre()
+    }
+
+    /// Where the rotor is within its detent, in detent widths from the current centre:
+    /// 0 on the centre, about ±0.5 at the midpoints to the neighbours (up to the snap
+    /// point plus the hysteresis before the detent switches). What a UI draws between two
+    /// menu items. 0 without detents.
+    ///
+    /// ```
+    /// use stiffspring::{Knob, KnobConfig};
+    /// let c = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).endstops(0.0, 1.0).detent_count(5);
+    /// let knob = Knob::<f64>::new(&c, 0.8)?;
+    /// assert!((knob.detent_fraction() - 0.2).abs() < 1e-9); // 0.05 past 0.75, width 0.25
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn detent_fraction(&self) -> S {
+        self.previous
+            .sub(self.ladder.centre())
+            .mul(self.inverse_width)
+    }
+
+    /// The last angle the knob used, radians.
+    ///
+    /// ```
+    /// use stiffspring::{Knob, KnobConfig};
+    /// let mut knob = Knob::<f32>::new(&KnobConfig::new(1_000.0, 1e-5, 0.05, 16384), 0.0)?;
+    /// let _ = knob.update(0.001);
+    /// let _ = knob.update(f32::NAN); // not used
+    /// assert_eq!(knob.angle(), 0.001);
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn angle(&self) -> S {
+        self.previous
+    }
+
+    /// The largest angle magnitude a reading may have (radians): the range the knob's
+    /// arithmetic holds. A reading beyond it is a [`SensorFault::OutOfRange`]. Fixed point
+    /// takes its whole range (its arithmetic saturates); a float knob stops where an
+    /// angle times its stiffest gain would leave the float's range.
+    ///
+    /// ```
+    /// use stiffspring::{I16F16, Knob, KnobConfig};
+    /// let knob = Knob::<I16F16>::new(&KnobConfig::new(1_000.0, 1e-5, 0.05, 16384), I16F16::ZERO)?;
+    /// assert_eq!(knob.reach(), I16F16::MAX.to_num::<f64>());
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn reach(&self) -> f64 {
+        self.highest.to_f64()
+    }
+
+    /// The largest change of the rotor's movement per period (radians per period per
+    /// period) that a reading may show: four times the torque limit on half the
+    /// configured inertia, `8·τ_max·dt²/J`, plus six encoder counts. A reading beyond
+    /// it is a [`SensorFault::Jump`].
+    ///
+    /// ```
+    /// use stiffspring::{Knob, KnobConfig};
+    /// let knob = Knob::<f64>::new(&KnobConfig::new(1_000.0, 1e-5, 0.05, 16384), 0.0)?;
+    /// let count = core::f64::consts::TAU / 16384.0;
+    /// assert!((knob.max_jolt() - (8.0 * 0.05 * 1e-6 / 1e-5 + 6.0 * count)).abs() < 1e-12);
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn max_jolt(&self) -> f64 {
+        self.jolt.to_f64()
+    }
+
+    /// The configured maximum speed, rad/s ([`KnobConfig::max_speed`]).
+    ///
+    /// ```
+    /// use stiffspring::{Knob, KnobConfig};
+    /// let c = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).max_speed(60.0);
+    /// assert_eq!(Knob::<f32>::new(&c, 0.0)?.max_speed(), Some(60.0));
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn max_speed(&self) -> Option<f64> {
+        self.max_speed
+    }
+
+    /// The knee past the rest zone, radians: over it the spring rises from zero to its
+    /// full stiffness ([`KNEE_COUNTS`] counts, less in a narrow detent).
+    ///
+    /// ```
+    /// use stiffspring::{Knob, KnobConfig};
+    /// let knob = Knob::<f32>::new(&KnobConfig::new(1_000.0, 1e-5, 0.05, 4096), 0.0)?;
+    /// assert_eq!(knob.knee(), 4.0 * core::f64::consts::TAU / 4096.0);
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn knee(&self) -> f64 {
+        self.knee
     }
 
     /// The torque limit the output is a fraction of (multiply to get the torque).
@@ -635,13 +1094,13 @@ impl<S: Scalar> Knob<S> {
         self.filter_time
     }
 
-    /// The rest zone: how far (radians, one encoder count) from its rest point the spring
-    /// is zero.
+    /// The rest zone: how far (radians, [`REST_COUNTS`] encoder counts) from its rest
+    /// point the spring is zero.
     ///
     /// ```
     /// use stiffspring::{Knob, KnobConfig};
     /// let knob = Knob::<f32>::new(&KnobConfig::new(1_000.0, 1e-5, 0.05, 4096), 0.0)?;
-    /// assert_eq!(knob.rest_zone(), core::f64::consts::TAU / 4096.0);
+    /// assert_eq!(knob.rest_zone(), 2.0 * core::f64::consts::TAU / 4096.0);
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn rest_zone(&self) -> f64 {

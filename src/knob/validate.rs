@@ -40,6 +40,8 @@ pub(crate) struct Grid {
 pub(crate) struct Checked {
     pub(crate) dt: f64,
     pub(crate) inertia: f64,
+    /// The configured maximum speed, rad/s (checked positive).
+    pub(crate) max_speed: Option<f64>,
     pub(crate) torque_limit: f64,
     pub(crate) latency: Latency,
     /// Counts per turn, and one count in radians (the rest zone).
@@ -142,6 +144,9 @@ pub(crate) const fn validate<S: Scalar>(config: &KnobConfig) -> Result<Checked, 
     let dt = 1.0 / rate;
     let inertia = tri!(KnobError::positive(config.inertia, P::Inertia));
     let torque_limit = tri!(KnobError::positive(config.torque_limit, P::TorqueLimit));
+    if let Some(w) = config.max_speed {
+        let _ = tri!(KnobError::positive(w, P::MaxSpeed));
+    }
     if config.counts_per_turn == 0 {
         return Err(KnobError::range(
             P::CountsPerTurn,
@@ -483,6 +488,7 @@ pub(crate) const fn validate<S: Scalar>(config: &KnobConfig) -> Result<Checked, 
         ));
     }
     Ok(Checked {
+        max_speed: config.max_speed,
         dt,
         inertia,
         torque_limit,
