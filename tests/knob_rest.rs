@@ -272,7 +272,6 @@ fn issue_knob_failures(starts: &[(f64, f64, &str)]) -> Vec<String> {
 /// centre (it stays in detent 16), released 0.3 of a width off its centre, and half a
 /// count off it.
 #[test]
-#[ignore = "issue 17: waits for the new knob law"]
 fn issue_knob_is_silent_on_detent_16() {
     let centre = ENDSTOPS.0 + 16.0 * width();
     let failures = issue_knob_failures(&[
@@ -418,31 +417,26 @@ fn bad_sample_nan() {
 }
 
 #[test]
-#[ignore = "issue 17: waits for the new knob law"]
 fn bad_sample_positive_infinity() {
     assert_bad_sample("+inf", |_| f64::INFINITY, true, true);
 }
 
 #[test]
-#[ignore = "issue 17: waits for the new knob law"]
 fn bad_sample_negative_infinity() {
     assert_bad_sample("-inf", |_| f64::NEG_INFINITY, true, true);
 }
 
 #[test]
-#[ignore = "issue 17: waits for the new knob law"]
 fn bad_sample_1e30() {
     assert_bad_sample("1e30", |_| 1e30, true, true);
 }
 
 #[test]
-#[ignore = "issue 17: waits for the new knob law"]
 fn bad_sample_1e300_in_f64() {
     assert_bad_sample("1e300", |_| 1e300, false, false);
 }
 
 #[test]
-#[ignore = "issue 17: waits for the new knob law"]
 fn bad_sample_half_turn_jump() {
     assert_bad_sample("half a turn", |a| a + PI, true, true);
 }
@@ -453,13 +447,8 @@ fn bad_sample_64_count_jump() {
     assert_bad_sample("64 counts", |a| a + 64.0 * TAU / 16384.0, true, true);
 }
 
-// ---------------------------------------------------------------------------------------
-// ISSUE 17, THE NEW API: compiled out (`cfg(any())` is never true) until the lead's knob
-// lands. Written against the API as specified: `KnobConfig::max_speed(rad_per_s: f64)`,
-// `KnobOutput::events.sensor: Option<stiffspring::knob::SensorFault>` with the variants
-// `NotANumber`, `OutOfRange` and `Jump`. To enable: delete the `#[cfg(any())]` line.
-// ---------------------------------------------------------------------------------------
-#[cfg(any())]
+// The sensor screen's events: `KnobConfig::max_speed`, `KnobOutput::events.sensor` with
+// `SensorFault::{NotANumber, OutOfRange, Jump}`.
 mod sensor_faults {
     use super::*;
     use stiffspring::knob::SensorFault;

@@ -63,6 +63,8 @@ pub(crate) struct Design {
     /// Each zone's loop, `None` where the zone cannot occur.
     pub(crate) zones: [Option<LoopCoefficients>; 3],
     pub(crate) zone_stiffness: [f64; 3],
+    /// The play's half-width, in encoder counts ([`play_counts`]).
+    pub(crate) play_counts: f64,
 }
 
 /// Why a design failed, before the error is put in the user's terms.
@@ -488,8 +490,36 @@ const fn finish<S: Scalar>(c: &Checked, damping: f64, endstop: f64) -> Result<De
         state_scale,
         zones,
         zone_stiffness: stiffness,
+        play_counts: play_counts(damping, alpha, c.inertia, dt),
     })
 }
+
+/// The play's half-width, in encoder counts: [`law::PLAY_COUNTS`](super::law::PLAY_COUNTS),
+/// or half a count where the damper's own mode is poorly damped.
+///
+/// A rotor of inertia `J` against the filtered damper `B/(1 + s·T)` (the filter's time
+/// constant `T = dt·(1 − α)/α`) has a mode of its own, `J·T·s² + J·s + B = 0`, with the
+/// damping ratio `ζ' = ½·√(J/(T·B))`. Where it is below [`MIN_DAMPER_MODE_RATIO`] for a
+/// rotor of half the configured inertia, the play's lag sustains that mode as an
+/// oscillation of several counts (at ζ = 2, 10 kHz, a 10-bit encoder: 9 counts peak to
+/// peak with the full play, in `tests/knob_sweep.rs`); half a count still absorbs a
+/// reading toggling between two counts.
+const fn play_counts(damping: f64, alpha: f64, inertia: f64, dt: f64) -> f64 {
+    if damping <= 0.0 || alpha >= 1.0 {
+        return super::law::PLAY_COUNTS;
+    }
+    let t = dt * (1.0 - alpha) / alpha;
+    let ratio = 0.5 * sqrt(0.5 * inertia / (t * damping));
+    if ratio >= MIN_DAMPER_MODE_RATIO {
+        super::law::PLAY_COUNTS
+    } else {
+        super::law::MIN_PLAY_COUNTS
+    }
+}
+
+/// The least damping ratio of the rotor's mode against its filtered damper, on half the
+/// configured inertia, for the full play ([`play_counts`]).
+const MIN_DAMPER_MODE_RATIO: f64 = 0.25;
 
 /// True when `config` is accepted for backend `S`.
 pub(crate) const fn passes<S: Scalar>(config: &KnobConfig) -> bool {

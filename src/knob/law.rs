@@ -49,6 +49,11 @@ pub(crate) const STATE_SCALE: f64 = 16.0;
 /// count about a count (2 counts peak to peak) stays inside the play's `2·1.25 = 2.5`.
 pub const PLAY_COUNTS: f64 = 1.25;
 
+/// The play's half-width where the damper's own mode is poorly damped (the design's
+/// `play_counts`): half a count, which still absorbs a reading toggling between two
+/// counts, not ±1 count of noise about one.
+pub const MIN_PLAY_COUNTS: f64 = 0.5;
+
 /// The rest zone's half-width, in encoder counts.
 pub const REST_COUNTS: f64 = 2.0;
 

@@ -170,7 +170,7 @@ pub use compiled::refusal;
 pub use config::{KnobConfig, Latency, MAX_MAGNETS};
 pub use error::{KnobError, Limit, Zone};
 pub use events::{Endstop, KnobEvents, SensorFault};
-pub use law::{KNEE_COUNTS, PLAY_COUNTS, REST_COUNTS};
+pub use law::{KNEE_COUNTS, MIN_PLAY_COUNTS, PLAY_COUNTS, REST_COUNTS};
 pub use reconfigure::Anchor;
 pub use screen::{AGREE_STEPS, FADE_PERIODS, HOLD_PERIODS};
 pub use stability::{
@@ -466,7 +466,7 @@ impl<S: Scalar> Knob<S> {
             previous: initial_angle,
             last_step: S::ZERO,
             held: initial_angle,
-            play: S::from_f64(law::PLAY_COUNTS * v.count),
+            play: S::from_f64(v.play_counts * v.count),
             gate: S::from_f64(jolt),
             jolt: S::from_f64(jolt),
             max_step: S::from_f64(max_step),
