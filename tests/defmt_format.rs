@@ -11,7 +11,9 @@
 #![cfg(feature = "defmt")]
 
 use stiffspring::kernel::BodyWeights;
-use stiffspring::knob::{Endstop, KnobError, KnobEvents, Latency, Limit, LoopCoefficients, Zone};
+use stiffspring::knob::{
+    Endstop, KnobDesign, KnobError, KnobEvents, Latency, Limit, LoopCoefficients, Zone,
+};
 use stiffspring::length::{Approximate, ApproximateNewton, Exact, Linearised, LinearisedRest};
 use stiffspring::scalar::{FixedFactor, FixedGains, FloatGains};
 use stiffspring::scene::{
@@ -98,7 +100,7 @@ const _: () = {
     is_format::<Angle>();
     is_format::<WrappedAngle>();
     // The knob.
-    in_every_backend!(Knob, KnobOutput);
+    in_every_backend!(Knob, KnobOutput, KnobDesign);
     is_format::<KnobConfig>();
     is_format::<KnobError>();
     is_format::<KnobEvents>();

@@ -35,6 +35,7 @@ use core::marker::PhantomData;
 /// # Ok::<(), stiffspring::knob::KnobError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct KnobDesign<S: Scalar> {
     pub(crate) design: Design,
     backend: PhantomData<S>,

@@ -32,6 +32,7 @@ const ENDSTOP_MULTIPLES: [f64; 7] = [4.0, 2.0, 1.0, 0.5, 0.25, 0.125, 0.0625];
 
 /// A designed knob, in `f64`: what the backend's values are prepared from.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct Design {
     pub(crate) dt: f64,
     /// The rotor's inertia, kg·m² (the sensor screen's jolt).
