@@ -172,7 +172,7 @@ fn run() -> bool {
 /// of a switching point may switch one period apart (I16F16 rounds the detent boundaries
 /// to Q16.16), and there the torque is not compared either.
 fn sweep<S: Scalar>(design: &KnobDesign<S>) -> bool {
-    let Ok(mut knob) = Knob::from_design(design, S::ZERO) else {
+    let Ok(mut knob) = Knob::from_design(design, S::from_f64(scene::sweep_angle(0))) else {
         say!("the configuration was rejected");
         return false;
     };
