@@ -397,11 +397,7 @@ fn check(s: &Summary) -> bool {
         s.final_torque
     );
     let last = scene::DETENTS as i32 - 1;
-    // At rest a rotor drifts inside the law's rest zone (zero torque), and comes to rest
-    // within the rest zone and the knee of its rest point (counts).
-    const REST_SWING: i32 = 2 * stiffspring::knob::REST_COUNTS as i32 + 1;
-    const REST_OFFSET: i32 =
-        (stiffspring::knob::REST_COUNTS + stiffspring::knob::KNEE_COUNTS) as i32;
+    use firmware::scenes::knob_rest::{OFFSET as REST_OFFSET, SWING as REST_SWING};
     let checks = [
         ("turned up to the last detent", s.top_detent == last),
         (

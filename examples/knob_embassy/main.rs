@@ -466,6 +466,7 @@ fn check(s: &Summary, reference: &Summary, ui: &Ui) -> bool {
         ui.frames_after
     );
     let last = scene::DETENTS as i32 - 1;
+    use firmware::scenes::knob_rest::{OFFSET as REST_OFFSET, SWING as REST_SWING};
     let checks = [
         (
             "the same run as the plain loop's, bit for bit",
@@ -482,11 +483,11 @@ fn check(s: &Summary, reference: &Summary, ui: &Ui) -> bool {
         ),
         (
             "at rest on the stop",
-            s.swing_released <= 2 && s.off_stop_released <= 2,
+            s.swing_released <= REST_SWING && s.off_stop_released <= REST_OFFSET,
         ),
         (
             "the flick ends at rest in a lower detent",
-            s.final_detent < last && s.swing_end <= 2 && off_centre_end <= 2,
+            s.final_detent < last && s.swing_end <= REST_SWING && off_centre_end <= REST_OFFSET,
         ),
         ("no event lost", s.dropped == 0),
         (
