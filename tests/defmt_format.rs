@@ -12,7 +12,8 @@
 
 use stiffspring::kernel::BodyWeights;
 use stiffspring::knob::{
-    Endstop, KnobDesign, KnobError, KnobEvents, Latency, Limit, LoopCoefficients, Zone,
+    Anchor, Endstop, KnobDesign, KnobError, KnobEvents, Latency, Limit, LoopCoefficients,
+    SensorFault, Zone,
 };
 use stiffspring::length::{Approximate, ApproximateNewton, Exact, Linearised, LinearisedRest};
 use stiffspring::scalar::{FixedFactor, FixedGains, FloatGains};
@@ -105,6 +106,8 @@ const _: () = {
     is_format::<KnobError>();
     is_format::<KnobEvents>();
     is_format::<Endstop>();
+    is_format::<SensorFault>();
+    is_format::<Anchor>();
     is_format::<Zone>();
     is_format::<Limit>();
     is_format::<Latency>();
