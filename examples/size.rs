@@ -13,6 +13,8 @@
 //! | `batch16_f32` | a `SpringBatch<f32, 1, 16>` of 16 values from a `const` raw tuning |
 //! | `rope_f32` | an `f32` 2D rope `Scene` (8 particles, gravity, exact length kernel) |
 //! | `knob_f32` | an `f32` `Knob` with detents and endstops (set up at run time), updated from an encoder |
+//! | `knob_f32_const` | the same knob designed at compile time (`knob!`), started with `Knob::from_design` |
+//! | `knob_i16f16_const` | the same in `I16F16`, designed at compile time |
 //! | `everything` | all of the above in one firmware |
 //!
 //! Every input that is not meant to be a constant goes through `black_box`, so that the
@@ -61,6 +63,10 @@ fn configured() {
     rope_f32();
     #[cfg(any(size = "knob_f32", size = "everything"))]
     knob_f32();
+    #[cfg(any(size = "knob_f32_const", size = "everything"))]
+    knob_f32_const();
+    #[cfg(any(size = "knob_i16f16_const", size = "everything"))]
+    knob_i16f16_const();
     black_box(());
 }
 
@@ -174,6 +180,43 @@ fn rope_f32() {
         let _ = black_box(rope.step());
     }
     black_box(rope.position(last).ok());
+}
+
+/// The knob of [`knob_f32`], as a `const` configuration.
+#[allow(dead_code)]
+const KNOB: stiffspring::KnobConfig = stiffspring::KnobConfig::new(1_000.0, 1e-5, 0.05, 16384)
+    .endstops(0.0, 3.0)
+    .detent_count(16)
+    .detent_stiffness(0.05);
+
+/// The knob of [`knob_f32`] designed at compile time: the firmware starts it from the
+/// design and updates it from an encoder.
+#[allow(dead_code)]
+fn knob_f32_const() {
+    use stiffspring::Knob;
+    let Ok(mut knob) = Knob::from_design(&stiffspring::knob!(KNOB, f32), black_box(0.0)) else {
+        return;
+    };
+    for n in 0..black_box(1000) {
+        let out = knob.update(black_box(n as f32 * 1e-3));
+        black_box(out.torque);
+    }
+}
+
+/// [`knob_f32_const`] in `I16F16`: the encoder's angle is a Q16.16 number from the start
+/// (no float on the way).
+#[allow(dead_code)]
+fn knob_i16f16_const() {
+    use stiffspring::{I16F16, Knob};
+    let design = stiffspring::knob!(KNOB, I16F16);
+    let Ok(mut knob) = Knob::from_design(&design, black_box(I16F16::ZERO)) else {
+        return;
+    };
+    for n in 0..black_box(1000) {
+        // About 1e−3 rad per period, as the f32 knob's encoder.
+        let out = knob.update(black_box(I16F16::from_bits(n * 66)));
+        black_box(out.torque);
+    }
 }
 
 /// A haptic knob with detents and endstops, fed by an encoder.

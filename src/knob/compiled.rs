@@ -9,9 +9,9 @@
 use super::config::KnobConfig;
 use super::design::{Design, design, design_or_reason};
 use super::error::{KnobError, Limit};
+use super::parts::KnobParts;
 use crate::error::Parameter;
 use crate::scalar::Scalar;
-use core::marker::PhantomData;
 
 /// A knob designed for backend `S`: a [`KnobConfig`] validated, its loop designed and
 /// checked against the guarantee of [`stability`](super::stability). Build it in a `const`
@@ -38,7 +38,8 @@ use core::marker::PhantomData;
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct KnobDesign<S: Scalar> {
     pub(crate) design: Design,
-    backend: PhantomData<S>,
+    /// The backend's numbers, computed with the design.
+    pub(crate) parts: KnobParts<S>,
 }
 
 impl<S: Scalar> KnobDesign<S> {
@@ -63,8 +64,8 @@ impl<S: Scalar> KnobDesign<S> {
     pub const fn new(config: &KnobConfig) -> Result<Self, KnobError> {
         match design::<S>(config) {
             Ok(design) => Ok(KnobDesign {
+                parts: KnobParts::new(&design),
                 design,
-                backend: PhantomData,
             }),
             Err(e) => Err(e),
         }
@@ -85,8 +86,8 @@ impl<S: Scalar> KnobDesign<S> {
     pub const fn new_or_reason(config: &KnobConfig) -> Result<Self, (Option<Parameter>, Limit)> {
         match design_or_reason::<S>(config) {
             Ok(design) => Ok(KnobDesign {
+                parts: KnobParts::new(&design),
                 design,
-                backend: PhantomData,
             }),
             Err(e) => Err(e),
         }

@@ -12,7 +12,7 @@
 
 use super::config::MAX_MAGNETS;
 use super::validate::floor;
-use crate::scalar::Scalar;
+use crate::scalar::{Raw, Scalar};
 
 /// How many detents the index may move in one period. At 1 kHz that is 4 000 detents per
 /// second, beyond a flick of a 1° knob (about 3 turns/s); a rotor moving faster catches up
@@ -62,16 +62,63 @@ pub(crate) struct Ladder<S: Scalar> {
 
 /// `x − floor(x)` split into a value on the backend's grid and the rest, scaled up:
 /// `(floor(x·2^F)/2^F, frac(x·2^F))` with `2^F = 1/LSB`.
-fn split<S: Scalar>(x: f64) -> (S, S) {
+const fn split<S: Scalar>(x: f64) -> (Raw<S>, Raw<S>) {
     let scale = 1.0 / S::RESOLUTION;
     let high = floor(x * scale);
-    (S::from_f64(high / scale), S::from_f64(x * scale - high))
+    (Raw::new(high / scale), Raw::new(x * scale - high))
 }
 
-impl<S: Scalar> Ladder<S> {
-    /// Detents at `origin + i·width` for `i ∈ [min_index, max_index]`, switching `threshold`
-    /// past the centre, starting at `index`. Set-up only; the arguments are validated.
-    pub(crate) fn new(
+/// A [`Ladder`] computed by the set-up (a `const fn`, so at compile time for a knob
+/// designed there): its numbers as the backend's bits, turned into the ladder at run time
+/// by [`Ladder::from_parts`] with no `f64` arithmetic.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct LadderParts<S> {
+    origin: Raw<S>,
+    width: Raw<S>,
+    threshold: Raw<S>,
+    neg_threshold: Raw<S>,
+    min_index: i32,
+    max_index: i32,
+    index: i32,
+    index_value: Raw<S>,
+    centre: Raw<S>,
+    frac1: Raw<S>,
+    frac2: Raw<S>,
+    step1: Raw<S>,
+    step2: Raw<S>,
+    lsb: Raw<S>,
+    exact_origin: f64,
+    exact_width: f64,
+}
+
+/// The centre of detent `index` of the exact grid `origin + i·width`, and the state
+/// that carries it from detent to detent: `(centre, frac1, frac2, index_value)`.
+const fn centre_of<S: Scalar>(
+    origin: f64,
+    width: f64,
+    index: i32,
+) -> (Raw<S>, Raw<S>, Raw<S>, Raw<S>) {
+    let exact = origin + index as f64 * width;
+    if S::RESOLUTION > 0.0 {
+        let units = exact / S::RESOLUTION + 0.5;
+        let whole = floor(units);
+        let (f1, f2) = split::<S>(units - whole);
+        (Raw::new(whole * S::RESOLUTION), f1, f2, Raw::new(0.0))
+    } else {
+        // A float backend: `origin + index·width`, rounded once, as `Ladder::up` computes
+        // it.
+        let o = Raw::<S>::new(origin);
+        let w = Raw::<S>::new(width);
+        let i = Raw::<S>::new(index as f64);
+        (Raw::float_mul_add(o, i, w), Raw::new(0.0), Raw::new(0.0), i)
+    }
+}
+
+impl<S: Scalar> LadderParts<S> {
+    /// Detents at `origin + i·width` for `i ∈ [min_index, max_index]`, switching
+    /// `threshold` past the centre, starting at `index`. The arguments are validated.
+    pub(crate) const fn new(
         origin: f64,
         width: f64,
         threshold: f64,
@@ -84,52 +131,81 @@ impl<S: Scalar> Ladder<S> {
             let units = width / lsb;
             let whole = floor(units);
             let (s1, s2) = split::<S>(units - whole);
-            (S::from_f64(whole * lsb), s1, s2, S::from_f64(lsb))
+            (Raw::new(whole * lsb), s1, s2, Raw::new(lsb))
         } else {
-            (S::from_f64(width), S::ZERO, S::ZERO, S::ZERO)
+            (Raw::new(width), Raw::new(0.0), Raw::new(0.0), Raw::new(0.0))
         };
-        let mut ladder = Ladder {
-            origin: S::from_f64(origin),
+        let index = if index < min_index {
+            min_index
+        } else if index > max_index {
+            max_index
+        } else {
+            index
+        };
+        let (centre, frac1, frac2, index_value) = centre_of::<S>(origin, width, index);
+        LadderParts {
+            origin: Raw::new(origin),
             width: width_s,
-            threshold: S::from_f64(threshold),
-            neg_threshold: S::from_f64(-threshold),
+            threshold: Raw::new(threshold),
+            neg_threshold: Raw::new(-threshold),
             min_index,
             max_index,
             index,
-            index_value: S::ZERO,
-            centre: S::ZERO,
-            frac1: S::ZERO,
-            frac2: S::ZERO,
+            index_value,
+            centre,
+            frac1,
+            frac2,
             step1,
             step2,
             lsb,
             exact_origin: origin,
             exact_width: width,
-        };
-        ladder.set_index(index);
-        ladder
+        }
     }
 
     /// A grid that never switches: index 0 at `origin` (a knob without detents).
-    pub(crate) fn fixed(origin: f64) -> Self {
-        let never = S::from_f64(S::MAX);
-        Ladder {
-            origin: S::from_f64(origin),
-            width: S::ZERO,
-            threshold: never,
-            neg_threshold: never.neg(),
+    pub(crate) const fn fixed(origin: f64) -> Self {
+        LadderParts {
+            origin: Raw::new(origin),
+            width: Raw::new(0.0),
+            threshold: Raw::new(S::MAX),
+            neg_threshold: Raw::new(-S::MAX),
             min_index: 0,
             max_index: 0,
             index: 0,
-            index_value: S::ZERO,
-            centre: S::from_f64(origin),
-            frac1: S::ZERO,
-            frac2: S::ZERO,
-            step1: S::ZERO,
-            step2: S::ZERO,
-            lsb: S::ZERO,
+            index_value: Raw::new(0.0),
+            centre: Raw::new(origin),
+            frac1: Raw::new(0.0),
+            frac2: Raw::new(0.0),
+            step1: Raw::new(0.0),
+            step2: Raw::new(0.0),
+            lsb: Raw::new(0.0),
             exact_origin: origin,
             exact_width: 0.0,
+        }
+    }
+}
+
+impl<S: Scalar> Ladder<S> {
+    /// The ladder the set-up computed.
+    pub(crate) fn from_parts(p: &LadderParts<S>) -> Self {
+        Ladder {
+            origin: p.origin.get(),
+            width: p.width.get(),
+            threshold: p.threshold.get(),
+            neg_threshold: p.neg_threshold.get(),
+            min_index: p.min_index,
+            max_index: p.max_index,
+            index: p.index,
+            index_value: p.index_value.get(),
+            centre: p.centre.get(),
+            frac1: p.frac1.get(),
+            frac2: p.frac2.get(),
+            step1: p.step1.get(),
+            step2: p.step2.get(),
+            lsb: p.lsb.get(),
+            exact_origin: p.exact_origin,
+            exact_width: p.exact_width,
         }
     }
 
@@ -219,6 +295,29 @@ impl<S: Scalar> Ladder<S> {
         self.walk::<MAX_SEEK>(angle)
     }
 
+    /// Puts the index on the detent whose centre is nearest `angle` (ties to the higher),
+    /// walking from where it is: set-up only, as many detents as that takes.
+    pub(crate) fn settle(&mut self, angle: S) {
+        while self.walk::<MAX_SEEK>(angle) != 0 {}
+        // The walk stops within the switching threshold (at least half a width) of a
+        // centre: the nearest is this one or a neighbour.
+        let here = angle.sub(self.centre).abs();
+        if self.index < self.max_index {
+            self.up();
+            if angle.sub(self.centre).abs() <= here {
+                return;
+            }
+            self.down();
+        }
+        if self.index > self.min_index {
+            self.down();
+            if angle.sub(self.centre).abs() < here {
+                return;
+            }
+            self.up();
+        }
+    }
+
     /// The current detent centre.
     #[inline(always)]
     pub(crate) fn centre(&self) -> S {
@@ -232,17 +331,13 @@ impl<S: Scalar> Ladder<S> {
             return;
         }
         self.index = index.clamp(self.min_index, self.max_index);
-        let exact = self.exact_origin + f64::from(self.index) * self.exact_width;
-        if S::RESOLUTION > 0.0 {
-            let units = exact / S::RESOLUTION + 0.5;
-            let whole = floor(units);
-            let (f1, f2) = split::<S>(units - whole);
-            self.centre = S::from_f64(whole * S::RESOLUTION);
-            self.frac1 = f1;
-            self.frac2 = f2;
-        } else {
-            self.index_value = S::from_f64(f64::from(self.index));
-            self.centre = self.origin.add(self.index_value.mul(self.width));
+        let (centre, frac1, frac2, index_value) =
+            centre_of::<S>(self.exact_origin, self.exact_width, self.index);
+        self.centre = centre.get();
+        self.frac1 = frac1.get();
+        self.frac2 = frac2.get();
+        if S::RESOLUTION == 0.0 {
+            self.index_value = index_value.get();
         }
     }
 }
@@ -265,24 +360,59 @@ pub(crate) struct Magnets<S: Scalar> {
     captured: bool,
 }
 
-impl<S: Scalar> Magnets<S> {
-    /// Sorted, validated centres; `release = radius + hysteresis`.
-    pub(crate) fn new(sorted: &[f64], radius: f64, release: f64) -> Self {
-        let mut centres = [S::ZERO; MAX_MAGNETS];
-        let mut midpoints = [S::ZERO; MAX_MAGNETS];
-        let count = sorted.len().min(MAX_MAGNETS);
-        for k in 0..count {
-            centres[k] = S::from_f64(sorted[k]);
+/// [`Magnets`] computed by the set-up, as the backend's bits ([`LadderParts`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct MagnetParts<S> {
+    centres: [Raw<S>; MAX_MAGNETS],
+    midpoints: [Raw<S>; MAX_MAGNETS],
+    count: usize,
+    radius: Raw<S>,
+    release: Raw<S>,
+}
+
+impl<S: Scalar> MagnetParts<S> {
+    /// The first `count` of `sorted` (validated centres); `release = radius + hysteresis`.
+    pub(crate) const fn new(
+        sorted: &[f64; MAX_MAGNETS],
+        count: usize,
+        radius: f64,
+        release: f64,
+    ) -> Self {
+        let mut centres = [Raw::new(0.0); MAX_MAGNETS];
+        let mut midpoints = [Raw::new(0.0); MAX_MAGNETS];
+        let count = if count < MAX_MAGNETS {
+            count
+        } else {
+            MAX_MAGNETS
+        };
+        let mut k = 0;
+        while k < count {
+            centres[k] = Raw::new(sorted[k]);
             if k + 1 < count {
-                midpoints[k] = S::from_f64(0.5 * (sorted[k] + sorted[k + 1]));
+                midpoints[k] = Raw::new(0.5 * (sorted[k] + sorted[k + 1]));
             }
+            k += 1;
         }
-        Magnets {
+        MagnetParts {
             centres,
             midpoints,
             count,
-            radius: S::from_f64(radius),
-            release: S::from_f64(release),
+            radius: Raw::new(radius),
+            release: Raw::new(release),
+        }
+    }
+}
+
+impl<S: Scalar> Magnets<S> {
+    /// The magnets the set-up computed.
+    pub(crate) fn from_parts(p: &MagnetParts<S>) -> Self {
+        Magnets {
+            centres: p.centres.map(Raw::get),
+            midpoints: p.midpoints.map(Raw::get),
+            count: p.count,
+            radius: p.radius.get(),
+            release: p.release.get(),
             nearest: 0,
             captured: false,
         }

@@ -159,6 +159,7 @@ mod detents;
 mod error;
 mod events;
 mod law;
+mod parts;
 mod reconfigure;
 mod screen;
 pub mod stability;
@@ -184,7 +185,6 @@ use crate::scalar::Scalar;
 use detents::{Ladder, Magnets};
 use law::Shape;
 use screen::Mode;
-use validate::nearest_index;
 
 /// What one control period gives: the torque to command and the detent state.
 ///
@@ -389,9 +389,12 @@ impl<S: Scalar> Knob<S> {
     /// ```
     pub fn from_design(design: &KnobDesign<S>, initial_angle: S) -> Result<Self, KnobError> {
         let v = &design.design;
-        let start = initial_angle.to_f64();
-        let start = KnobError::finite(start, Parameter::Position)?;
-        if start.abs() > v.reach {
+        let p = &design.parts;
+        let (lowest, highest) = (p.lowest.get(), p.highest.get());
+        // Checked in the backend's arithmetic: a NaN fails both comparisons.
+        if !(initial_angle >= lowest && initial_angle <= highest) {
+            let start = initial_angle.to_f64();
+            KnobError::finite(start, Parameter::Position)?;
             return Err(KnobError::range(
                 Parameter::Position,
                 Limit::BackendRange,
@@ -399,119 +402,66 @@ impl<S: Scalar> Knob<S> {
                 v.reach,
             ));
         }
-        let limit = v.torque_limit;
-        let per_rad = |k: f64| S::from_f64(k / limit);
-        let rest_angle = law::REST_COUNTS * v.count;
-        // The knee: KNEE_COUNTS counts, or a quarter of the way from the rest zone to
-        // the switching point where a detent is narrower.
-        let knee_angle = match v.grid {
-            Some(g) => {
-                let threshold = g.threshold;
-                (law::KNEE_COUNTS * v.count).min(0.25 * (threshold - rest_angle))
-            }
-            None => law::KNEE_COUNTS * v.count,
-        };
-        let shape = |k: f64| {
-            let knee = k / limit * knee_angle;
-            Shape {
-                rest: S::from_f64(k / limit * rest_angle),
-                knee: S::from_f64(knee),
-                half_knee: S::from_f64(0.5 * knee),
-                curvature: if knee > 0.0 {
-                    S::from_f64(0.5 / knee)
-                } else {
-                    S::ZERO
-                },
-            }
-        };
-        let zones = [
-            ZoneGains {
-                other: S::ZERO,
-                shape: shape(v.zone_stiffness[FREE]),
+        let zone = |z: &parts::ZoneParts<S>| ZoneGains {
+            other: z.other.get(),
+            shape: Shape {
+                rest: z.rest.get(),
+                knee: z.knee.get(),
+                half_knee: z.half_knee.get(),
+                curvature: z.curvature.get(),
             },
-            ZoneGains {
-                other: per_rad(v.magnet),
-                shape: shape(v.zone_stiffness[MAGNET]),
-            },
-            ZoneGains {
-                other: per_rad(v.endstop),
-                shape: shape(v.zone_stiffness[BEYOND]),
-            },
-        ];
-        let ladder = match v.grid {
-            Some(g) => {
-                let index = nearest_index(start, g.origin, g.width, g.range);
-                Ladder::new(g.origin, g.width, g.threshold, g.range, index)
-            }
-            None => Ladder::fixed(match v.bounds {
-                Some((lo, _)) => lo,
-                None => 0.0,
-            }),
         };
-        let magnets = Magnets::new(
-            &v.magnets[..v.magnet_count],
-            v.magnet_radius,
-            v.magnet_radius + v.hysteresis,
-        );
-        let (lo, hi) = v.bounds.unwrap_or((-v.reach, v.reach));
-        // The most the rotor's movement per period can change: the torque limit, three
-        // times more from a hand, on half the inertia, plus the encoder's rounding.
-        let jolt = screen::JOLT_TORQUES * limit / (0.5 * v.inertia) * v.dt * v.dt
-            + screen::JOLT_COUNTS * v.count;
-        let jolt = jolt.min(v.reach);
-        let max_step = v.max_speed.map_or(v.reach, |w| (w * v.dt).min(v.reach));
+        let jolt = p.jolt.get();
         let mut knob = Knob {
-            lowest: S::from_f64(-v.reach),
-            highest: S::from_f64(v.reach),
+            lowest,
+            highest,
             previous: initial_angle,
             last_step: S::ZERO,
             held: initial_angle,
-            play: S::from_f64(v.play_counts * v.count),
-            gate: S::from_f64(jolt),
-            jolt: S::from_f64(jolt),
-            max_step: S::from_f64(max_step),
+            play: p.play.get(),
+            gate: jolt,
+            jolt,
+            max_step: p.max_step.get(),
             mode: Mode::Tracking,
             last_torque: S::ZERO,
             candidate: initial_angle,
             candidate_step: S::ZERO,
-            fade_unit: S::from_f64(1.0 / f64::from(screen::FADE_PERIODS)),
+            fade_unit: p.fade_unit.get(),
             offset: S::ZERO,
-            slew: S::from_f64((v.zone_stiffness[FREE] / limit * v.count).max(1.0 / 256.0)),
+            slew: p.slew.get(),
             damping_state: S::ZERO,
-            damping_gain: S::from_f64(v.state_scale * v.damping / (limit * v.dt)),
-            unscale: S::coef(1.0 / v.state_scale),
-            alpha: S::coef(v.alpha),
-            beta: S::coef(1.0 - v.alpha),
-            step: S::coef(v.dt),
-            detent_gain: per_rad(v.detent),
-            return_gain: per_rad(v.ret),
-            zones,
-            floor: S::from_f64(law::TORQUE_FLOOR),
+            damping_gain: p.damping_gain.get(),
+            unscale: p.unscale.get(),
+            alpha: p.alpha.get(),
+            beta: p.beta.get(),
+            step: p.step.get(),
+            detent_gain: p.detent_gain.get(),
+            return_gain: p.return_gain.get(),
+            zones: [zone(&p.zones[0]), zone(&p.zones[1]), zone(&p.zones[2])],
+            floor: p.floor.get(),
             bounded: v.bounds.is_some(),
-            lo: S::from_f64(lo),
-            hi: S::from_f64(hi),
-            // Hit past the rest zone and the knee: the spring is at full stiffness there.
-            lo_hit: S::from_f64(lo - rest_angle - knee_angle),
-            hi_hit: S::from_f64(hi + rest_angle + knee_angle),
-            lo_release: S::from_f64(lo + v.hysteresis),
-            hi_release: S::from_f64(hi - v.hysteresis),
-            return_centre: S::from_f64(v.return_centre),
-            inverse_width: match v.grid {
-                Some(g) => S::from_f64(1.0 / g.width),
-                None => S::ZERO,
-            },
-            ladder,
-            magnets,
+            lo: p.lo.get(),
+            hi: p.hi.get(),
+            lo_hit: p.lo_hit.get(),
+            hi_hit: p.hi_hit.get(),
+            lo_release: p.lo_release.get(),
+            hi_release: p.hi_release.get(),
+            return_centre: p.return_centre.get(),
+            inverse_width: p.inverse_width.get(),
+            ladder: Ladder::from_parts(&p.ladder),
+            magnets: Magnets::from_parts(&p.magnets),
             beyond: None,
-            torque_limit: limit,
+            torque_limit: v.torque_limit,
             damping: v.damping,
-            filter_time: v.dt * (1.0 - v.alpha) / v.alpha,
-            rest_zone: rest_angle,
-            knee: knee_angle,
+            filter_time: p.filter_time,
+            rest_zone: p.rest_zone,
+            knee: p.knee,
             max_speed: v.max_speed,
             loop_coefficients: v.zones,
             zone_stiffness: v.zone_stiffness,
         };
+        // The nearest detent to the initial angle, walked to from the set-up's index.
+        knob.ladder.settle(initial_angle);
         knob.reset(initial_angle);
         Ok(knob)
     }
@@ -590,7 +540,9 @@ impl<S: Scalar> Knob<S> {
     /// assert_eq!(out.events.endstop_hit, Some(stiffspring::knob::Endstop::Max));
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
-    #[inline]
+    // Never inlined: the firmware calls it from one place, and the screen's cold path
+    // (`recover`) calls it too, which would otherwise carry a second copy of the law.
+    #[inline(never)]
     pub fn update(&mut self, angle: S) -> KnobOutput<S> {
         let step = angle.sub(self.previous);
         let surprise = step.sub(self.last_step);
@@ -604,10 +556,9 @@ impl<S: Scalar> Knob<S> {
             let u = held.sub(self.held);
             self.held = held;
             let out = self.period(angle, u);
-            self.last_torque = out.torque;
-            out
+            self.settle_torque(out)
         } else {
-            self.recover(angle, None)
+            self.recover(angle)
         }
     }
 
@@ -644,10 +595,9 @@ impl<S: Scalar> Knob<S> {
             self.last_step = step;
             self.held = law::play(self.held, angle, self.play);
             let out = self.period(angle, u);
-            self.last_torque = out.torque;
-            out
+            self.settle_torque(out)
         } else {
-            self.recover(angle, Some(u))
+            self.recover(angle)
         }
     }
 
@@ -655,7 +605,7 @@ impl<S: Scalar> Knob<S> {
     /// or any reading while the knob is not tracking.
     #[cold]
     #[inline(never)]
-    fn recover(&mut self, angle: S, velocity: Option<S>) -> KnobOutput<S> {
+    fn recover(&mut self, angle: S) -> KnobOutput<S> {
         let fault = if angle.partial_cmp(&angle).is_none() {
             Some(SensorFault::NotANumber)
         } else if !self.in_reach(angle) {
@@ -666,56 +616,6 @@ impl<S: Scalar> Knob<S> {
         let step = angle.sub(self.previous);
         let fits = |bound: S, x: S| x.abs() <= bound;
         match (self.mode, fault) {
-            // Fading, and the reading is good: the law, with the torque faded in.
-            (Mode::Fading { step: n }, None)
-                if fits(self.jolt, step.sub(self.last_step)) && fits(self.max_step, step) =>
-            {
-                self.last_step = step;
-                let held = law::play(self.held, angle, self.play);
-                let u = velocity.unwrap_or(held.sub(self.held));
-                self.held = held;
-                let mut out = self.period(angle, u);
-                let n = n + 1;
-                let mut fade = S::ZERO;
-                for _ in 0..n {
-                    fade = fade.add(self.fade_unit);
-                }
-                out.torque = out.torque.mul(fade);
-                if n >= screen::FADE_PERIODS {
-                    self.mode = Mode::Tracking;
-                    self.gate = self.jolt;
-                } else {
-                    self.mode = Mode::Fading { step: n };
-                }
-                self.last_torque = out.torque;
-                out
-            }
-            // Reconfigured, and the reading is good: the law, with the old torque's offset
-            // moved toward zero by one count's torque.
-            (Mode::Blending, None)
-                if fits(self.jolt, step.sub(self.last_step)) && fits(self.max_step, step) =>
-            {
-                self.last_step = step;
-                let held = law::play(self.held, angle, self.play);
-                let u = velocity.unwrap_or(held.sub(self.held));
-                self.held = held;
-                let mut out = self.period(angle, u);
-                let o = self.offset;
-                self.offset = if o > self.slew {
-                    o.sub(self.slew)
-                } else if o < self.slew.neg() {
-                    o.add(self.slew)
-                } else {
-                    S::ZERO
-                };
-                out.torque = law::torque(out.torque.neg(), self.offset.neg(), self.floor);
-                if self.offset == S::ZERO {
-                    self.mode = Mode::Tracking;
-                    self.gate = self.jolt;
-                }
-                self.last_torque = out.torque;
-                out
-            }
             // One bad reading, and this one continues the motion from before it: go on
             // as if the missed period had moved the rotor at the same speed.
             (Mode::Holding { missed: 1 }, None)
@@ -849,6 +749,8 @@ impl<S: Scalar> Knob<S> {
         let hit = if beyond != self.beyond { beyond } else { None };
         self.beyond = beyond;
         self.mode = Mode::Fading { step: 0 };
+        // The hot path takes the readings again; `ease` fades the torque in.
+        self.gate = self.jolt;
         self.last_torque = S::ZERO;
         KnobOutput {
             torque: S::ZERO,
@@ -873,6 +775,60 @@ impl<S: Scalar> Knob<S> {
                 ..KnobEvents::default()
             },
         }
+    }
+
+    /// The torque of a period the law ran: kept as the last torque while tracking; faded
+    /// in after a resync, or blended after a reconfiguration, otherwise.
+    #[inline(always)]
+    fn settle_torque(&mut self, out: KnobOutput<S>) -> KnobOutput<S> {
+        if matches!(self.mode, Mode::Tracking) {
+            self.last_torque = out.torque;
+            out
+        } else {
+            self.ease(out)
+        }
+    }
+
+    /// [`Self::settle_torque`] while fading in or blending (`screen.rs`), out of line.
+    #[cold]
+    #[inline(never)]
+    fn ease(&mut self, mut out: KnobOutput<S>) -> KnobOutput<S> {
+        match self.mode {
+            // Taken up again: the torque times `n/FADE_PERIODS`.
+            Mode::Fading { step: n } => {
+                let n = n + 1;
+                let mut fade = S::ZERO;
+                for _ in 0..n {
+                    fade = fade.add(self.fade_unit);
+                }
+                out.torque = out.torque.mul(fade);
+                self.mode = if n >= screen::FADE_PERIODS {
+                    Mode::Tracking
+                } else {
+                    Mode::Fading { step: n }
+                };
+            }
+            // Reconfigured: the old torque's offset moved toward zero by one count's
+            // torque per period.
+            Mode::Blending => {
+                let o = self.offset;
+                self.offset = if o > self.slew {
+                    o.sub(self.slew)
+                } else if o < self.slew.neg() {
+                    o.add(self.slew)
+                } else {
+                    S::ZERO
+                };
+                out.torque = law::torque(out.torque.neg(), self.offset.neg(), self.floor);
+                if self.offset == S::ZERO {
+                    self.mode = Mode::Tracking;
+                }
+            }
+            // Not reached: the gate is open only while tracking, fading or blending.
+            _ => {}
+        }
+        self.last_torque = out.torque;
+        out
     }
 
     #[inline(always)]

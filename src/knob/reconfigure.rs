@@ -90,7 +90,10 @@ impl<S: Scalar> Knob<S> {
                 next.mode = Mode::Blending;
             }
         }
-        next.gate = if next.mode == Mode::Tracking {
+        next.gate = if matches!(
+            next.mode,
+            Mode::Tracking | Mode::Blending | Mode::Fading { .. }
+        ) {
             next.jolt
         } else {
             S::ONE.neg()

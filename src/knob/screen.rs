@@ -5,9 +5,11 @@
 //! one period (`max_step`), and changes its movement per period by less than the motor
 //! and a hand can (`jolt`: four times the torque limit on half the configured inertia,
 //! plus six counts of quantisation and noise over the three readings a change of
-//! movement spans). The hot path tests both with two comparisons; a knob not
-//! [`Mode::Tracking`] fails them by construction (its gate is negative), so every other
-//! case runs in the cold path, `Knob::recover`.
+//! movement spans). The hot path tests both with two comparisons; a knob holding or lost
+//! fails them by construction (its gate is negative), so that those cases run in the cold
+//! path, `Knob::recover`. A knob fading in ([`Mode::Fading`]) or blending a
+//! reconfiguration ([`Mode::Blending`]) takes the hot path, and only its torque goes
+//! through the cold `Knob::ease`.
 //!
 //! After a bad reading the knob holds the last torque for [`HOLD_PERIODS`] periods, then
 //! commands none. If the next reading continues the motion from before the bad one, the

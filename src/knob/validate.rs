@@ -85,17 +85,6 @@ pub(crate) const fn floor(value: f64) -> f64 {
     }
 }
 
-/// The index of the detent nearest to `angle`: `round((angle − origin)/width)`, clamped.
-pub(crate) const fn nearest_index(
-    angle: f64,
-    origin: f64,
-    width: f64,
-    (lo, hi): (i32, i32),
-) -> i32 {
-    let r = floor((angle - origin) / width + 0.5);
-    r.clamp(lo as f64, hi as f64) as i32
-}
-
 /// A float backend's significant bits (24 for `f32`, 53 for `f64`), told apart by their
 /// set-up range ([`Scalar::MAX`] is 2⁶⁴ for `f32`, 2⁵⁰⁰ for `f64`).
 const fn float_bits<S: Scalar>() -> u32 {

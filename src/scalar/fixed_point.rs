@@ -15,7 +15,7 @@
 
 use super::fast::{FastGains, broad_step, narrow_step};
 use super::wide::{broad, narrow};
-use super::{Scalar, Sealed};
+use super::{Repr, Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
 /// The gains `(C_k, C_d)` of a spring in a fixed-point backend: each a mantissa and an
@@ -260,6 +260,22 @@ macro_rules! fixed_backend {
             #[inline]
             fn coef_to_f64(coef: Self::Coef) -> f64 {
                 coef.to_num::<f64>()
+            }
+            const REPR: Repr = Repr::Fixed {
+                bits: <$Bits>::BITS,
+                frac: <$S>::FRAC_NBITS,
+            };
+            const COEF_REPR: Repr = Repr::Fixed {
+                bits: <$Bits>::BITS,
+                frac: <$Coef>::FRAC_NBITS,
+            };
+            #[inline]
+            fn from_const_bits(bits: i64) -> Self {
+                <$S>::from_bits(bits as $Bits)
+            }
+            #[inline]
+            fn coef_from_const_bits(bits: i64) -> Self::Coef {
+                <$Coef>::from_bits(bits as $Bits)
             }
             #[inline(always)]
             fn add(self, rhs: Self) -> Self {

@@ -1,6 +1,6 @@
 //! `f32` and `f64`: plain IEEE arithmetic; the state and the gains in the same format.
 
-use super::{Scalar, Sealed};
+use super::{Repr, Scalar, Sealed};
 
 /// The gains `(C_k, C_d)` of a spring in a float backend.
 ///
@@ -166,6 +166,20 @@ macro_rules! float_backend {
             #[inline]
             fn coef_to_f64(coef: Self::Coef) -> f64 {
                 coef as f64
+            }
+            const REPR: Repr = if <$F>::MANTISSA_DIGITS == 24 {
+                Repr::F32
+            } else {
+                Repr::F64
+            };
+            const COEF_REPR: Repr = <Self as Scalar>::REPR;
+            #[inline]
+            fn from_const_bits(bits: i64) -> Self {
+                <$F>::from_bits(bits as $Bits)
+            }
+            #[inline]
+            fn coef_from_const_bits(bits: i64) -> Self::Coef {
+                <$F>::from_bits(bits as $Bits)
             }
             #[inline(always)]
             fn add(self, rhs: Self) -> Self {

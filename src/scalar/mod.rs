@@ -6,8 +6,14 @@ mod fast;
 #[cfg(feature = "fixed")]
 mod fixed_point;
 mod float;
+mod raw;
 #[cfg(feature = "fixed")]
 mod wide;
+
+#[doc(hidden)]
+pub use raw::Repr;
+#[allow(unused_imports)]
+pub(crate) use raw::{Raw, RawCoef};
 
 #[cfg(feature = "fixed")]
 pub use fixed_point::{FixedFactor, FixedGains};
@@ -243,6 +249,19 @@ pub trait Scalar:
     fn coef(value: f64) -> Self::Coef;
     /// A fraction back as `f64`.
     fn coef_to_f64(coef: Self::Coef) -> f64;
+
+    /// How `Self` stores a number, for a set-up that runs at compile time (`Raw`).
+    #[doc(hidden)]
+    const REPR: Repr;
+    /// How [`Self::Coef`] stores a fraction.
+    #[doc(hidden)]
+    const COEF_REPR: Repr;
+    /// The number whose bits `Repr::bits_of` gave. Set-up only.
+    #[doc(hidden)]
+    fn from_const_bits(bits: i64) -> Self;
+    /// The fraction whose bits `Repr::bits_of` gave. Set-up only.
+    #[doc(hidden)]
+    fn coef_from_const_bits(bits: i64) -> Self::Coef;
 
     /// `self + rhs` (saturating in fixed point).
     fn add(self, rhs: Self) -> Self;
