@@ -421,11 +421,18 @@ impl<S: Scalar> Magnets<S> {
     /// Updates the nearest magnet and the capture for `angle`. Returns the extension
     /// `angle − centre` of the capturing magnet (zero when free), whether the rotor is
     /// captured, and the magnet that captured it this period, if any.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn update(&mut self, angle: S) -> (S, bool, Option<u8>) {
+        // Inlined: a knob without magnets pays a test, not a call.
         if self.count == 0 {
             return (S::ZERO, false, None);
         }
+        self.track(angle)
+    }
+
+    /// [`Self::update`] with magnets, out of line.
+    #[inline(never)]
+    fn track(&mut self, angle: S) -> (S, bool, Option<u8>) {
         let before = self.nearest;
         // At most `count` moves in total: the midpoints are sorted.
         for _ in 0..MAX_MAGNETS {
