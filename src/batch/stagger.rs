@@ -135,7 +135,7 @@ impl<S: Scalar, const D: usize, const N: usize> Stagger<S, D, N> {
     /// use stiffspring::{SpringBatch, Stagger, Tuning};
     /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
     /// let i = b.push([0.0])?;
-    /// let mut s = Stagger::new();
+    /// let mut s = Stagger::<f32, 1, 2>::new();
     /// s.schedule(i, [1.0], 10);
     /// s.clear();
     /// assert_eq!(s.pending(), 0);
