@@ -1,6 +1,7 @@
 //! Starter: a card on a 60 Hz display springs to where you tap, is retargeted mid-flight,
 //! is flung, and says when it has settled. `cargo run --example card` draws it on a
-//! simulated display and writes `target/tour/card.gif`.
+//! simulated display and writes `target/tour/card.gif`; `draw` runs on any embedded-graphics
+//! `DrawTarget`, your panel's driver.
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{Circle, PrimitiveStyle, Rectangle, RoundedRectangle};
@@ -27,20 +28,29 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
             println!("card: settled on {:?} at frame {frame}", card.position());
         }
         if motion.moved() || frame == 0 {
-            let [x, y] = card.position().map(|c| c.round() as i32);
-            display.clear(Rgb565::BLACK)?;
-            Circle::with_center(Point::new(tap[0] as i32, tap[1] as i32), 9)
-                .into_styled(PrimitiveStyle::with_stroke(Rgb565::CSS_GRAY, 1))
-                .draw(&mut display)?;
-            RoundedRectangle::with_equal_corners(
-                Rectangle::with_center(Point::new(x, y), Size::new(56, 36)),
-                Size::new(8, 8),
-            )
-            .into_styled(PrimitiveStyle::with_fill(Rgb565::CSS_ORANGE))
-            .draw(&mut display)?;
+            draw(&mut display, tap, card.position())?;
         }
         display.show(); // a frame: only frames that moved were redrawn
     }
     println!("card: wrote {}", display.save_gif("card")?.display());
     Ok(())
+}
+
+/// One frame on any embedded-graphics display: the tap's ring and the card.
+fn draw<D: DrawTarget<Color = Rgb565>>(
+    d: &mut D,
+    tap: [f32; 2],
+    at: [f32; 2],
+) -> Result<(), D::Error> {
+    let [x, y] = at.map(|c| c.round() as i32);
+    d.clear(Rgb565::BLACK)?;
+    Circle::with_center(Point::new(tap[0] as i32, tap[1] as i32), 9)
+        .into_styled(PrimitiveStyle::with_stroke(Rgb565::CSS_GRAY, 1))
+        .draw(d)?;
+    RoundedRectangle::with_equal_corners(
+        Rectangle::with_center(Point::new(x, y), Size::new(56, 36)),
+        Size::new(8, 8),
+    )
+    .into_styled(PrimitiveStyle::with_fill(Rgb565::CSS_ORANGE))
+    .draw(d)
 }

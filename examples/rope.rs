@@ -1,7 +1,8 @@
 //! Starter: a rope pinned at one end, its other end dragged by a pointer through a drag
 //! handle (a zero-length spring to a pinned point that follows the pointer), then let go.
 //! `cargo run --example rope` draws it on a simulated display and writes
-//! `target/tour/rope.gif`.
+//! `target/tour/rope.gif`; `draw` runs on any embedded-graphics `DrawTarget`, your panel's
+//! driver.
 //!
 //! On a chip without an FPU, make it `Scene::<I16F16, 2, 13, 12>` and write the numbers as
 //! `I16F16` (`I16F16::from_num(0.02)`); `examples/check_rope.rs` runs the same kind of rope in both.
@@ -10,7 +11,7 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle};
 use firmware::display::Display;
 use stiffspring::Tuning;
-use stiffspring::scene::{Scene, SceneConfig};
+use stiffspring::scene::{ParticleId, Scene, SceneConfig};
 
 const DT: f64 = 1.0 / 240.0; // four physics steps per 60 Hz frame
 fn pixel([x, y]: [f32; 2]) -> Point {
@@ -40,20 +41,7 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         for _ in 0..4 {
             let _ = rope.step(); // reports what moved and which islands fell asleep
         }
-        display.clear(Rgb565::BLACK)?;
-        for pair in ids.windows(2) {
-            Line::new(
-                pixel(rope.position(pair[0])?),
-                pixel(rope.position(pair[1])?),
-            )
-            .into_styled(PrimitiveStyle::with_stroke(Rgb565::CSS_LIGHT_GREEN, 2))
-            .draw(&mut display)?;
-        }
-        if frame < 120 {
-            Circle::with_center(pixel(rope.position(handle)?), 9)
-                .into_styled(PrimitiveStyle::with_stroke(Rgb565::WHITE, 1))
-                .draw(&mut display)?;
-        }
+        draw(&mut display, &rope, &ids, (frame < 120).then_some(handle))?;
         display.show();
     }
     println!(
@@ -61,5 +49,29 @@ pub fn main() -> Result<(), Box<dyn std::error::Error>> {
         rope.position(tip)?,
         display.save_gif("rope")?.display()
     );
+    Ok(())
+}
+
+/// One frame on any embedded-graphics display: the rope's links, and the drag handle
+/// while there is one.
+fn draw<D: DrawTarget<Color = Rgb565>>(
+    d: &mut D,
+    rope: &Scene<f32, 2, 13, 12>,
+    ids: &[ParticleId],
+    handle: Option<ParticleId>,
+) -> Result<(), D::Error> {
+    d.clear(Rgb565::BLACK)?;
+    for pair in ids.windows(2) {
+        if let (Ok(a), Ok(b)) = (rope.position(pair[0]), rope.position(pair[1])) {
+            Line::new(pixel(a), pixel(b))
+                .into_styled(PrimitiveStyle::with_stroke(Rgb565::CSS_LIGHT_GREEN, 2))
+                .draw(d)?;
+        }
+    }
+    if let Some(Ok(at)) = handle.map(|h| rope.position(h)) {
+        Circle::with_center(pixel(at), 9)
+            .into_styled(PrimitiveStyle::with_stroke(Rgb565::WHITE, 1))
+            .draw(d)?;
+    }
     Ok(())
 }

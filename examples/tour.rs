@@ -4,7 +4,8 @@
 //! cargo run --release --example tour
 //! ```
 //!
-//! Plays the four starters (`examples/card.rs`, `list.rs`, `rope.rs`, `knob_loop.rs`),
+//! Plays the five starters (`examples/card.rs`, `list.rs`, `scroll.rs`, `rope.rs`,
+//! `knob_loop.rs`),
 //! whose frames go to animated GIFs in `target/tour/`, then prints compact tables (steps
 //! to rest, error against the independent f64 reference model of the article and
 //! against the analytic solution, run time against the peer crates) and writes SVG plots
@@ -18,6 +19,7 @@ mod card;
 mod knob_loop;
 mod list;
 mod rope;
+mod scroll;
 
 mod tour {
     pub mod bench;
@@ -45,9 +47,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "stiffspring tour — plots and animations in {}\n",
         dir.display()
     );
-    println!("The starters (examples/card.rs, list.rs, rope.rs, knob_loop.rs), as they print:");
+    println!(
+        "The starters (examples/card.rs, list.rs, scroll.rs, rope.rs, knob_loop.rs), as they print:"
+    );
     card::main()?;
     list::main()?;
+    scroll::main()?;
     rope::main()?;
     knob_loop::main()?;
     println!();

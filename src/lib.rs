@@ -88,7 +88,7 @@ mod start;
 mod tuning;
 mod value;
 
-pub use batch::{BatchIndex, BatchMotion, SpringBatch};
+pub use batch::{BatchIndex, BatchMotion, SpringBatch, Stagger, Trail};
 pub use bounds::Bounds;
 pub use decay::Decay;
 pub use error::{Bound, Error, Parameter, Remedy};
@@ -100,7 +100,7 @@ pub use rubber_band::RubberBand;
 pub use scalar::Scalar;
 pub use scroll::{Scroll, ScrollPhase};
 pub use snap::Snap;
-pub use tuning::{Oscillator, Tuning, presets};
+pub use tuning::{MAX_SETTLING_STEPS, Oscillator, Tuning, presets};
 pub use value::SpringValue;
 
 /// Re-export of the fixed-point types the backends are implemented for.

@@ -24,7 +24,7 @@ use stiffspring::scene::{
 use stiffspring::{
     BatchIndex, BatchMotion, Bound, Bounds, Decay, Error, Friction, I16F16, I32F32, Knob,
     KnobConfig, KnobOutput, Motion, Oscillator, Parameter, Remedy, RestThreshold, RubberBand,
-    Scroll, ScrollPhase, Snap, SpringBatch, SpringValue, Tuning,
+    Scroll, ScrollPhase, Snap, SpringBatch, SpringValue, Stagger, Trail, Tuning,
 };
 
 /// Compiles only for `T: defmt::Format`.
@@ -59,6 +59,8 @@ const _: () = {
     is_format::<SpringBatch<f32, 2, 4>>();
     is_format::<SpringBatch<I16F16, 1, 4>>();
     is_format::<BatchIndex>();
+    is_format::<Stagger<f32, 2, 4>>();
+    is_format::<Trail<I16F16, 1, 4>>();
     is_format::<BatchMotion>();
     is_format::<Motion>();
     // Throws.

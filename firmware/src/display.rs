@@ -117,19 +117,27 @@ impl Display {
         let mut encoder =
             gif::Encoder::new(file, WIDTH as u16, HEIGHT as u16, &rgb).map_err(invalid)?;
         encoder.set_repeat(gif::Repeat::Infinite).map_err(invalid)?;
-        let delay = (100.0 * f64::from(RECORD_EVERY) / FRAME_RATE).round() as u16;
-        for pixels in &self.frames {
+        for (k, pixels) in self.frames.iter().enumerate() {
             let mut frame = gif::Frame::from_indexed_pixels(
                 WIDTH as u16,
                 HEIGHT as u16,
                 pixels.as_slice(),
                 None,
             );
-            frame.delay = delay;
+            frame.delay = gif_delay(k);
             encoder.write_frame(&frame).map_err(invalid)?;
         }
         Ok(path)
     }
+}
+
+/// The delay of recorded frame `k`, in the GIF's centiseconds: the time from its start to
+/// the next one's, each rounded to the centisecond from the start of the animation, so
+/// that the GIF plays at the rate the frames were stepped (two 60 Hz frames are 3.33 cs:
+/// 3, 3, 4, 3, 3, 4, … rather than 3 every time, which played 10 % fast).
+fn gif_delay(k: usize) -> u16 {
+    let at = |k: usize| (100.0 * (k as f64) * f64::from(RECORD_EVERY) / FRAME_RATE).round();
+    (at(k + 1) - at(k)) as u16
 }
 
 impl OriginDimensions for Display {
@@ -181,4 +189,25 @@ fn index_of(palette: &mut Vec<Rgb565>, colour: Rgb565) -> u8 {
     (0..palette.len())
         .min_by_key(|&i| distance(&palette[i]))
         .unwrap_or(0) as u8
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_gif_plays_at_the_rate_the_frames_were_stepped() {
+        // 300 recorded frames of two 60 Hz frames: 10 s, to the centisecond, and never
+        // more than half a centisecond off at any frame.
+        let mut total = 0u32;
+        for k in 0..300 {
+            total += u32::from(gif_delay(k));
+            let exact = 100.0 * (k + 1) as f64 * 2.0 / 60.0;
+            assert!(
+                (f64::from(total) - exact).abs() <= 0.5,
+                "frame {k}: {total} cs"
+            );
+        }
+        assert_eq!(total, 1000);
+    }
 }

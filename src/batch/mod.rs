@@ -16,9 +16,13 @@ use heapless::Vec;
 
 mod index;
 mod setters;
+mod stagger;
 mod step;
+mod trail;
 
 pub use index::{BatchIndex, BatchMotion};
+pub use stagger::Stagger;
+pub use trail::Trail;
 
 /// Up to `N` values of `D` dimensions in backend `S`, sharing one [`Tuning`] (and so one
 /// time step).

@@ -30,8 +30,10 @@
 
 mod exact;
 pub mod presets;
+mod settling;
 
 pub use exact::Oscillator;
+pub use settling::MAX_SETTLING_STEPS;
 
 use crate::error::{Bound, Error, Parameter, check, positive, tri};
 use crate::friction::Friction;
