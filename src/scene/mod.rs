@@ -29,7 +29,13 @@
 //!    - [`Stepper::Jacobi`]: the force form, every spring from the same state, summed.
 //! 3. **Sleep**: an island whose particles all moved less than the sleep threshold for
 //!    long enough stops being stepped; it costs nothing until something touches it (an
-//!    impulse, a teleport, a velocity, a moved anchor, a new or retuned spring).
+//!    impulse, a teleport, a velocity, a moved anchor, a new or retuned spring). A
+//!    network whose springs damp only their stretching (a rope's swing about its pin)
+//!    comes to rest and sleeps only with a drag: for a rope of length `ℓ` under gravity
+//!    `g`, `c ≈ 2.4·√(g/ℓ)` ([`SceneConfig::linear_damping`]; about 6 per second for a
+//!    metre) with [`SleepThreshold::new(0.01, 0.5)`](SleepThreshold::new) puts a
+//!    20-particle rope dragged and let go to sleep 2.3 s after the release, at rest
+//!    below its pin (`tests/scene_damping.rs`).
 //!
 //! # The kept step velocity
 //!
@@ -170,6 +176,27 @@ pub(crate) struct Spring<S: Scalar, L: LengthKernel<S>> {
     pub(crate) point: bool,
 }
 
+/// A stretch of the schedule's two-sided distance springs that the Gauss-Seidel loop runs
+/// without a bounds check per spring (see `Scene::reschedule`).
+///
+/// A chain is `count` springs in consecutive slots `spring..spring + count`, spring
+/// `spring + j` joining particles `particle + j` and `particle + j + 1`: a rope built in
+/// order. Its loop slices the springs, positions and velocities once (one bounds check
+/// per chain) and walks them together, keeping the shared end's position and velocity
+/// in registers from one spring to the next, so nothing is loaded twice. Anything else
+/// is a chain of one spring with `particle: None`, run through its own indices.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct Chain {
+    /// The slot of the first spring.
+    pub(crate) spring: u16,
+    /// Springs in the chain, at least 1.
+    pub(crate) count: u16,
+    /// The slot of the first spring's end `a`; `None` for a lone spring (count 1) whose
+    /// ends are not consecutive.
+    pub(crate) particle: Option<u16>,
+}
+
 /// Sleep state of one island (indexed by the slot of its root particle).
 #[derive(Clone, Copy, Debug, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -240,6 +267,8 @@ where
     pub(crate) two_sided: Vec<u16, K>,
     pub(crate) one_sided_points: Vec<u16, K>,
     pub(crate) two_sided_points: Vec<u16, K>,
+    /// `two_sided` as chains, in the same order (Gauss-Seidel's loop).
+    pub(crate) chains: Vec<Chain, K>,
     /// Roots of awake islands (for the sleep check).
     pub(crate) awake_islands: Vec<u16, P>,
     /// Jacobi's per-particle sums.
@@ -310,6 +339,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             two_sided: Vec::new(),
             one_sided_points: Vec::new(),
             two_sided_points: Vec::new(),
+            chains: Vec::new(),
             awake_islands: Vec::new(),
             accumulated: Vec::new(),
             gravity_step,

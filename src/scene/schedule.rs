@@ -8,7 +8,7 @@
 //! that is mostly at rest costs only its moving parts. Touching a particle (or a pinned
 //! particle's springs) wakes its island.
 
-use super::{Island, Kind, Scene};
+use super::{Chain, Island, Kind, Scene};
 use crate::kernel::BodyWeights;
 use crate::length::LengthKernel;
 use crate::scalar::Scalar;
@@ -110,6 +110,7 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
         self.two_sided.clear();
         self.one_sided_points.clear();
         self.two_sided_points.clear();
+        self.chains.clear();
         for (p, particle) in self.particles.iter().enumerate() {
             if particle.live && particle.inverse_mass > 0.0 {
                 let island = particle.island as usize;
@@ -136,6 +137,30 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             };
             if awake {
                 let _ = list.push(i as u16);
+                if s.kind == Kind::TwoSided && !s.point {
+                    // Ends at consecutive slots, the second being the next spring's
+                    // first, in consecutive spring slots: one more spring of the chain.
+                    let consecutive = s.b as usize == s.a as usize + 1;
+                    match self.chains.last_mut() {
+                        Some(Chain {
+                            spring,
+                            count,
+                            particle: Some(first),
+                        }) if consecutive
+                            && *spring as usize + *count as usize == i
+                            && *first as usize + *count as usize == s.a as usize =>
+                        {
+                            *count += 1;
+                        }
+                        _ => {
+                            let _ = self.chains.push(Chain {
+                                spring: i as u16,
+                                count: 1,
+                                particle: consecutive.then_some(s.a),
+                            });
+                        }
+                    }
+                }
             }
         }
     }

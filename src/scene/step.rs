@@ -49,7 +49,9 @@ fn integrate<S: Scalar, const D: usize>(
                 S::state_add(S::state_abs(u[k]), S::state_abs(next[k])),
             );
         }
-        if S::within(total, bound) {
+        // `total` is a sum of magnitudes: `≤` is `within` without its `abs` (and is
+        // false for NaN too).
+        if total <= bound {
             *x = next;
             *r = rest;
             return;
@@ -99,8 +101,31 @@ impl<S: Scalar, const D: usize> Positions<'_, S, D> {
 }
 
 /// One spring's change of relative step velocity `Δ = −(C_k·x + C_d·u_rel)` (the kernel
-/// of eq. 27/28) and the axis it acts along, from the positions and step velocities of
-/// its ends.
+/// of eq. 27/28) and the axis it acts along, from the separation `d = p_b − p_a` and the
+/// step velocities of its ends.
+#[inline(always)]
+fn response<S: Scalar, const D: usize, L: LengthKernel<S>>(
+    spring: &Spring<S, L>,
+    d: &[S::State; D],
+    ua: &[S::State; D],
+    ub: &[S::State; D],
+) -> (S::State, [S::Coef; D]) {
+    let (x, n) = L::measure(d, &spring.rest);
+    let du = difference::<S, D>(ub, ua);
+    // The sum starts at its first term, not at 0 + it: in floating point the two differ
+    // only in the sign of a zero, which `respond`'s `0 − (…)` makes +0 either way.
+    let mut relative = if D > 0 {
+        S::state_mul_coef(du[0], n[0])
+    } else {
+        S::STATE_ZERO
+    };
+    for k in 1..D {
+        relative = S::state_add(relative, S::state_mul_coef(du[k], n[k]));
+    }
+    (kernel::respond::<S>(&spring.gains, x, relative), n)
+}
+
+/// [`response`] of the spring between particles `a` and `b` of the scene.
 #[inline(always)]
 fn spring_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
     spring: &Spring<S, L>,
@@ -108,13 +133,35 @@ fn spring_response<S: Scalar, const D: usize, L: LengthKernel<S>>(
     velocities: &[[S::State; D]],
 ) -> (S::State, [S::Coef; D]) {
     let (a, b) = (spring.a as usize, spring.b as usize);
-    let (x, n) = L::measure(&positions.separation(a, b), &spring.rest);
-    let du = difference::<S, D>(&velocities[b], &velocities[a]);
-    let mut relative = S::STATE_ZERO;
+    response(
+        spring,
+        &positions.separation(a, b),
+        &velocities[a],
+        &velocities[b],
+    )
+}
+
+/// Gauss-Seidel's update of a two-sided distance spring whose ends are at `(xa, ra)`
+/// and `(xb, rb)` with step velocities `ua`, `ub`: `ua −= w_a·Δ·n`, `ub += w_b·Δ·n`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn two_sided_update<S: Scalar, const D: usize, L: LengthKernel<S>>(
+    spring: &Spring<S, L>,
+    xa: &[S::State; D],
+    ra: &[S::Remainder; D],
+    xb: &[S::State; D],
+    rb: &[S::Remainder; D],
+    ua: &mut [S::State; D],
+    ub: &mut [S::State; D],
+) {
+    let mut d = [S::STATE_ZERO; D];
     for k in 0..D {
-        relative = S::state_add(relative, S::state_mul_coef(du[k], n[k]));
+        d[k] = S::difference_carrying(xb[k], rb[k], xa[k], ra[k]);
     }
-    (kernel::respond::<S>(&spring.gains, x, relative), n)
+    let (delta, n) = response(spring, &d, ua, ub);
+    let (da, db) = spring.weights.split(delta);
+    add_along::<S, D>(ua, &n, da);
+    add_along::<S, D>(ub, &n, db);
 }
 
 /// A point spring's change of relative step velocity per component,
@@ -192,12 +239,40 @@ impl<S: Scalar, const D: usize, const P: usize, const K: usize, L: LengthKernel<
             let (delta, n) = spring_response(s, positions, u);
             add_along::<S, D>(&mut u[s.b as usize], &n, delta);
         }
-        for &i in self.two_sided.iter() {
-            let s = &self.springs[i as usize];
-            let (delta, n) = spring_response(s, positions, u);
-            let (da, db) = s.weights.split(delta);
-            add_along::<S, D>(&mut u[s.a as usize], &n, da);
-            add_along::<S, D>(&mut u[s.b as usize], &n, db);
+        // `two_sided`, in the same order, chain by chain (see `Chain`).
+        for chain in self.chains.iter() {
+            let first = chain.spring as usize;
+            let Some(p) = chain.particle else {
+                let s = &self.springs[first];
+                let (delta, n) = spring_response(s, positions, u);
+                let (da, db) = s.weights.split(delta);
+                add_along::<S, D>(&mut u[s.a as usize], &n, da);
+                add_along::<S, D>(&mut u[s.b as usize], &n, db);
+                continue;
+            };
+            // Spring `j` of the chain joins particles `p + j` and `p + j + 1`: one
+            // bounds check per slice, none per spring.
+            let (p, count) = (p as usize, chain.count as usize);
+            let springs = &self.springs[first..first + count];
+            let (x, r) = (&positions.x[p..=p + count], &positions.r[p..=p + count]);
+            let (Some((x0, xs)), Some((r0, rs)), Some((u0, us))) = (
+                x.split_first(),
+                r.split_first(),
+                u[p..=p + count].split_first_mut(),
+            ) else {
+                continue;
+            };
+            // End `a` of each spring is end `b` of the one before: its position and
+            // velocity stay in registers, and its velocity is stored once, when the
+            // chain moves past it.
+            let (mut xa, mut ra, mut ua, mut slot) = (*x0, *r0, *u0, u0);
+            for ((s, (xb, rb)), next) in springs.iter().zip(xs.iter().zip(rs)).zip(us) {
+                let (xb, rb, mut ub) = (*xb, *rb, *next);
+                two_sided_update(s, &xa, &ra, &xb, &rb, &mut ua, &mut ub);
+                *slot = ua;
+                (xa, ra, ua, slot) = (xb, rb, ub, next);
+            }
+            *slot = ua;
         }
         for &i in self.one_sided_points.iter() {
             let s = &self.springs[i as usize];
