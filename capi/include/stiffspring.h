@@ -17,8 +17,44 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// How many values a batch holds.
+#define STIFFSPRING_BATCH_CAPACITY 16
+
+// 64-bit words of a [`StiffspringBatchF32`].
+#define STIFFSPRING_BATCH_F32_WORDS 95
+
+// Bytes of a [`StiffspringBatchF32`], for a buffer of one's own.
+#define STIFFSPRING_BATCH_F32_SIZE (STIFFSPRING_BATCH_F32_WORDS * 8)
+
+// 64-bit words of a [`StiffspringBatchQ16`].
+#define STIFFSPRING_BATCH_Q16_WORDS 123
+
+// Bytes of a [`StiffspringBatchQ16`].
+#define STIFFSPRING_BATCH_Q16_SIZE (STIFFSPRING_BATCH_Q16_WORDS * 8)
+
 // The alignment of every storage struct: that of `uint64_t`.
 #define STIFFSPRING_STORAGE_ALIGN 8
+
+// 64-bit words of a [`StiffspringKnobF32`].
+#define STIFFSPRING_KNOB_F32_WORDS 68
+
+// Bytes of a [`StiffspringKnobF32`], for a buffer of one's own.
+#define STIFFSPRING_KNOB_F32_SIZE (STIFFSPRING_KNOB_F32_WORDS * 8)
+
+// 64-bit words of a [`StiffspringKnobQ16`].
+#define STIFFSPRING_KNOB_Q16_WORDS 68
+
+// Bytes of a [`StiffspringKnobQ16`].
+#define STIFFSPRING_KNOB_Q16_SIZE (STIFFSPRING_KNOB_Q16_WORDS * 8)
+
+// 64-bit words of a [`StiffspringKnobConfig`].
+#define STIFFSPRING_KNOB_CONFIG_WORDS 37
+
+// Bytes of a [`StiffspringKnobConfig`], for a buffer of one's own.
+#define STIFFSPRING_KNOB_CONFIG_SIZE (STIFFSPRING_KNOB_CONFIG_WORDS * 8)
+
+// The most magnetic detents a knob has.
+#define STIFFSPRING_KNOB_MAX_MAGNETS MAX_MAGNETS
 
 // One in Q16.16: `STIFFSPRING_Q16_ONE` (65536).
 //
@@ -95,6 +131,52 @@ typedef enum StiffspringError {
   STIFFSPRING_ERROR_OTHER = 14,
 } StiffspringError;
 
+// Which endstop a period hit, if any.
+enum StiffspringEndstop
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint8_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // None.
+  STIFFSPRING_ENDSTOP_NONE = 0,
+  // The lower end of the range.
+  STIFFSPRING_ENDSTOP_MIN = 1,
+  // The upper end of the range.
+  STIFFSPRING_ENDSTOP_MAX = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum StiffspringEndstop StiffspringEndstop;
+#else
+typedef uint8_t StiffspringEndstop;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+// Why a period's reading was not used, if it was not (the Rust API's `SensorFault`).
+enum StiffspringSensorFault
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint8_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // The reading was used.
+  STIFFSPRING_SENSOR_FAULT_NONE = 0,
+  // A NaN.
+  STIFFSPRING_SENSOR_FAULT_NOT_A_NUMBER = 1,
+  // An infinite angle, or one beyond the range the knob's arithmetic holds.
+  STIFFSPRING_SENSOR_FAULT_OUT_OF_RANGE = 2,
+  // A reading too far from where the rotor can be.
+  STIFFSPRING_SENSOR_FAULT_JUMP = 3,
+  // Readings that agree, of a rotor turning faster than the configured maximum speed.
+  STIFFSPRING_SENSOR_FAULT_TOO_FAST = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum StiffspringSensorFault StiffspringSensorFault;
+#else
+typedef uint8_t StiffspringSensorFault;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
 // What a step did, as the Rust API's `Motion`.
 //
 // ```c
@@ -111,6 +193,24 @@ typedef enum StiffspringMotion {
   STIFFSPRING_MOTION_SETTLED = 2,
 } StiffspringMotion;
 
+// When the torque acts, as the Rust API's `Latency`.
+typedef enum StiffspringLatency {
+  // The torque computed from a reading acts within the same period.
+  STIFFSPRING_LATENCY_SAME_STEP = 0,
+  // The torque computed from a reading acts over the next period (SimpleFOC-style
+  // firmware); the default.
+  STIFFSPRING_LATENCY_ONE_STEP = 1,
+} StiffspringLatency;
+
+// Storage for an `f32` batch; `stiffspring_batch_f32_init` fills it.
+//
+// ```c
+// static StiffspringBatchF32 rows;
+// ```
+typedef struct StiffspringBatchF32 {
+  uint64_t opaque[STIFFSPRING_BATCH_F32_WORDS];
+} StiffspringBatchF32;
+
 // Storage for a tuning; one of the `stiffspring_tuning_from_*` functions fills it.
 //
 // ```c
@@ -120,6 +220,106 @@ typedef enum StiffspringMotion {
 typedef struct StiffspringTuning {
   uint64_t opaque[STIFFSPRING_TUNING_WORDS];
 } StiffspringTuning;
+
+// What one batch step did.
+//
+// ```c
+// StiffspringBatchMotion m;
+// stiffspring_batch_f32_step(&rows, &m);
+// if (m.moving + m.settled > 0) redraw();
+// ```
+typedef struct StiffspringBatchMotion {
+  // Values that moved and are still moving.
+  uint32_t moving;
+  // Values that came to rest in this step.
+  uint32_t settled;
+} StiffspringBatchMotion;
+
+// Storage for a Q16.16 batch; `stiffspring_batch_q16_init` fills it.
+//
+// ```c
+// static StiffspringBatchQ16 rows;
+// ```
+typedef struct StiffspringBatchQ16 {
+  uint64_t opaque[STIFFSPRING_BATCH_Q16_WORDS];
+} StiffspringBatchQ16;
+
+// Storage for an `f32` knob; `stiffspring_knob_f32_init` fills it.
+//
+// ```c
+// static StiffspringKnobF32 knob;
+// ```
+typedef struct StiffspringKnobF32 {
+  uint64_t opaque[STIFFSPRING_KNOB_F32_WORDS];
+} StiffspringKnobF32;
+
+// Storage for a knob's configuration; `stiffspring_knob_config_init` fills it.
+//
+// ```c
+// StiffspringKnobConfig config;
+// stiffspring_knob_config_init(&config, sizeof config, 1000.0, 1e-5, 0.05, 16384);
+// stiffspring_knob_config_endstops(&config, 0.0, 3.0);
+// stiffspring_knob_config_detent_count(&config, 16);
+// stiffspring_knob_config_detent_stiffness(&config, 0.05);
+// ```
+typedef struct StiffspringKnobConfig {
+  uint64_t opaque[STIFFSPRING_KNOB_CONFIG_WORDS];
+} StiffspringKnobConfig;
+
+// What happened in one period (the Rust API's `KnobEvents`).
+typedef struct StiffspringKnobEvents {
+  // The detent index changed this period, by this much (its sign says which way).
+  int8_t detent_step;
+  // The rotor went past an endstop this period.
+  StiffspringEndstop endstop_hit;
+  // A magnetic detent captured the rotor this period: its index in the sorted list,
+  // or −1.
+  int16_t magnet_captured;
+  // This period's reading was not used, and why.
+  StiffspringSensorFault sensor;
+  // The knob took up the readings again after a fault.
+  bool resynced;
+} StiffspringKnobEvents;
+
+// One period's output of an `f32` knob.
+//
+// ```c
+// StiffspringKnobOutputF32 out;
+// stiffspring_knob_f32_update(&knob, encoder_angle(), &out);
+// set_torque(out.torque * TORQUE_LIMIT);
+// ```
+typedef struct StiffspringKnobOutputF32 {
+  // The torque to command, as a fraction of the torque limit, in `[−1, 1]`.
+  float torque;
+  // The current detent index.
+  int32_t detent;
+  // What happened this period.
+  struct StiffspringKnobEvents events;
+} StiffspringKnobOutputF32;
+
+// Storage for a Q16.16 knob; `stiffspring_knob_q16_init` fills it.
+//
+// ```c
+// static StiffspringKnobQ16 knob;
+// ```
+typedef struct StiffspringKnobQ16 {
+  uint64_t opaque[STIFFSPRING_KNOB_Q16_WORDS];
+} StiffspringKnobQ16;
+
+// One period's output of a Q16.16 knob.
+//
+// ```c
+// StiffspringKnobOutputQ16 out;
+// stiffspring_knob_q16_update(&knob, encoder_angle_q16(), &out);
+// ```
+typedef struct StiffspringKnobOutputQ16 {
+  // The torque to command, as a fraction of the torque limit, in Q16.16 (`[−65536, 65536]`).
+  int32_t torque;
+  // The current detent index.
+  int32_t detent;
+  // What happened this period.
+  struct StiffspringKnobEvents events;
+} StiffspringKnobOutputQ16;
 
 // Storage for an `f32` value; `stiffspring_value_f32_init` fills it.
 //
@@ -143,6 +343,388 @@ typedef struct StiffspringValueQ16 {
 extern "C" {
 #endif // __cplusplus
 
+// A batch with no values yet, tuned by `tuning` (which sets its time step), written into
+// `storage` of `size` bytes.
+//
+// Errors: `UNREPRESENTABLE` when the backend cannot hold the tuning; `NULL_POINTER`,
+// `BUFFER_TOO_SMALL`, `MISALIGNED` for the storage, `NOT_INITIALISED` or `DROPPED` for
+// the tuning. On an error the storage is unchanged.
+//
+// ```c
+// StiffspringBatchF32 rows;
+// stiffspring_batch_f32_init(&rows, sizeof rows, &tuning);
+// ```
+//
+// # Safety
+//
+// `storage` is null or points to `size` bytes the caller owns; `tuning` is null or points
+// to a `StiffspringTuning`.
+enum StiffspringError stiffspring_batch_f32_init(struct StiffspringBatchF32 *storage,
+                                                 size_t size,
+                                                 const struct StiffspringTuning *tuning);
+
+// Ends the batch: later calls on it return `DROPPED` until it is initialised again.
+//
+// ```c
+// stiffspring_batch_f32_drop(&rows);
+// ```
+//
+// # Safety
+//
+// `batch` is null or points to a `StiffspringBatchF32` the caller owns.
+enum StiffspringError stiffspring_batch_f32_drop(struct StiffspringBatchF32 *batch);
+
+// Adds a value at rest at `position`; `index` receives its name.
+//
+// Errors: `CAPACITY_FULL`, `NOT_FINITE` or `OUT_OF_RANGE` for the position; the batch is
+// then unchanged.
+//
+// ```c
+// uint32_t row;
+// stiffspring_batch_f32_push(&rows, 0.0f, &row);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`]; `index` is null or valid for a write.
+enum StiffspringError stiffspring_batch_f32_push(struct StiffspringBatchF32 *batch,
+                                                 float position,
+                                                 uint32_t *index);
+
+// Removes the value `index` names; `position` (optional) receives where it was.
+//
+// ```c
+// stiffspring_batch_f32_remove(&rows, row, NULL);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`]; `position` is null or valid for a write.
+enum StiffspringError stiffspring_batch_f32_remove(struct StiffspringBatchF32 *batch,
+                                                   uint32_t index,
+                                                   float *position);
+
+// Springs the value `index` names toward `target`. Cannot fail on the target (NaN is
+// ignored, out-of-range input saturates); `STALE_INDEX` for an index that names no value.
+//
+// ```c
+// stiffspring_batch_f32_set_target(&rows, row, 24.0f);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`].
+enum StiffspringError stiffspring_batch_f32_set_target(struct StiffspringBatchF32 *batch,
+                                                       uint32_t index,
+                                                       float target);
+
+// [`stiffspring_batch_f32_set_target`], reporting instead of saturating: `NOT_FINITE`,
+// `OUT_OF_RANGE` or `UNREPRESENTABLE`, and the value is unchanged.
+//
+// ```c
+// stiffspring_batch_f32_try_set_target(&rows, row, 24.0f);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`].
+enum StiffspringError stiffspring_batch_f32_try_set_target(struct StiffspringBatchF32 *batch,
+                                                           uint32_t index,
+                                                           float target);
+
+// Moves the value `index` names to `position` at once (its target stays), keeping its
+// velocity. Cannot fail on the position; `STALE_INDEX` for an index that names no value.
+//
+// ```c
+// stiffspring_batch_f32_set_position(&rows, row, finger_y);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`].
+enum StiffspringError stiffspring_batch_f32_set_position(struct StiffspringBatchF32 *batch,
+                                                         uint32_t index,
+                                                         float position);
+
+// Gives the value `index` names a velocity (units per second). Cannot fail on the
+// velocity; `STALE_INDEX` for an index that names no value.
+//
+// ```c
+// stiffspring_batch_f32_fling(&rows, row, 600.0f);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`].
+enum StiffspringError stiffspring_batch_f32_fling(struct StiffspringBatchF32 *batch,
+                                                  uint32_t index,
+                                                  float velocity);
+
+// One time step of every value; `motion` (optional) receives what it did.
+//
+// ```c
+// StiffspringBatchMotion m;
+// stiffspring_batch_f32_step(&rows, &m);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`]; `motion` is null or valid for a write.
+enum StiffspringError stiffspring_batch_f32_step(struct StiffspringBatchF32 *batch,
+                                                 struct StiffspringBatchMotion *motion);
+
+// The indices of the values that came to rest in the last step: up to `capacity` of them
+// into `indices`, and how many into `written` (optional).
+//
+// ```c
+// uint32_t done[STIFFSPRING_BATCH_CAPACITY];
+// size_t n;
+// stiffspring_batch_f32_just_settled(&rows, done, STIFFSPRING_BATCH_CAPACITY, &n);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`]; `indices` is null or valid for writes of `capacity`
+// indices, `written` null or valid for a write.
+enum StiffspringError stiffspring_batch_f32_just_settled(const struct StiffspringBatchF32 *batch,
+                                                         uint32_t *indices,
+                                                         size_t capacity,
+                                                         size_t *written);
+
+// The position of the value `index` names, into `out`.
+//
+// ```c
+// float y;
+// stiffspring_batch_f32_position(&rows, row, &y);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`]; `out` is null or valid for a write.
+enum StiffspringError stiffspring_batch_f32_position(const struct StiffspringBatchF32 *batch,
+                                                     uint32_t index,
+                                                     float *out);
+
+// Whether the value `index` names rests on its target, into `out`.
+//
+// ```c
+// bool resting;
+// stiffspring_batch_f32_is_at_rest(&rows, row, &resting);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_position`].
+enum StiffspringError stiffspring_batch_f32_is_at_rest(const struct StiffspringBatchF32 *batch,
+                                                       uint32_t index,
+                                                       bool *out);
+
+// How many values the batch holds, and how many of them move, into `len` and `awake`
+// (each optional).
+//
+// ```c
+// uint32_t len, awake;
+// stiffspring_batch_f32_counts(&rows, &len, &awake);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_f32_drop`]; `len` and `awake` are null or valid for a write.
+enum StiffspringError stiffspring_batch_f32_counts(const struct StiffspringBatchF32 *batch,
+                                                   uint32_t *len,
+                                                   uint32_t *awake);
+
+// A Q16.16 batch with no values yet, tuned by `tuning` (which sets its time step), written into
+// `storage` of `size` bytes.
+//
+// Errors: `UNREPRESENTABLE` when the backend cannot hold the tuning; `NULL_POINTER`,
+// `BUFFER_TOO_SMALL`, `MISALIGNED` for the storage, `NOT_INITIALISED` or `DROPPED` for
+// the tuning. On an error the storage is unchanged.
+//
+// ```c
+// StiffspringBatchQ16 rows;
+// stiffspring_batch_q16_init(&rows, sizeof rows, &tuning);
+// ```
+//
+// # Safety
+//
+// `storage` is null or points to `size` bytes the caller owns; `tuning` is null or points
+// to a `StiffspringTuning`.
+enum StiffspringError stiffspring_batch_q16_init(struct StiffspringBatchQ16 *storage,
+                                                 size_t size,
+                                                 const struct StiffspringTuning *tuning);
+
+// Ends the batch: later calls on it return `DROPPED` until it is initialised again.
+//
+// ```c
+// stiffspring_batch_q16_drop(&rows);
+// ```
+//
+// # Safety
+//
+// `batch` is null or points to a `StiffspringBatchQ16` the caller owns.
+enum StiffspringError stiffspring_batch_q16_drop(struct StiffspringBatchQ16 *batch);
+
+// Adds a value at rest at `position`; `index` receives its name.
+//
+// Errors: `CAPACITY_FULL`, `NOT_FINITE` or `OUT_OF_RANGE` for the position; the batch is
+// then unchanged.
+//
+// ```c
+// uint32_t row;
+// stiffspring_batch_q16_push(&rows, 0, &row);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`]; `index` is null or valid for a write.
+enum StiffspringError stiffspring_batch_q16_push(struct StiffspringBatchQ16 *batch,
+                                                 int32_t position,
+                                                 uint32_t *index);
+
+// Removes the value `index` names; `position` (optional) receives where it was.
+//
+// ```c
+// stiffspring_batch_q16_remove(&rows, row, NULL);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`]; `position` is null or valid for a write.
+enum StiffspringError stiffspring_batch_q16_remove(struct StiffspringBatchQ16 *batch,
+                                                   uint32_t index,
+                                                   int32_t *position);
+
+// Springs the value `index` names toward `target`. Cannot fail on the target (NaN is
+// ignored, out-of-range input saturates); `STALE_INDEX` for an index that names no value.
+//
+// ```c
+// stiffspring_batch_q16_set_target(&rows, row, 24 * STIFFSPRING_Q16_ONE);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`].
+enum StiffspringError stiffspring_batch_q16_set_target(struct StiffspringBatchQ16 *batch,
+                                                       uint32_t index,
+                                                       int32_t target);
+
+// [`stiffspring_batch_q16_set_target`], reporting instead of saturating: `NOT_FINITE`,
+// `OUT_OF_RANGE` or `UNREPRESENTABLE`, and the value is unchanged.
+//
+// ```c
+// stiffspring_batch_q16_try_set_target(&rows, row, 24 * STIFFSPRING_Q16_ONE);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`].
+enum StiffspringError stiffspring_batch_q16_try_set_target(struct StiffspringBatchQ16 *batch,
+                                                           uint32_t index,
+                                                           int32_t target);
+
+// Moves the value `index` names to `position` at once (its target stays), keeping its
+// velocity. Cannot fail on the position; `STALE_INDEX` for an index that names no value.
+//
+// ```c
+// stiffspring_batch_q16_set_position(&rows, row, finger_y);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`].
+enum StiffspringError stiffspring_batch_q16_set_position(struct StiffspringBatchQ16 *batch,
+                                                         uint32_t index,
+                                                         int32_t position);
+
+// Gives the value `index` names a velocity (units per second). Cannot fail on the
+// velocity; `STALE_INDEX` for an index that names no value.
+//
+// ```c
+// stiffspring_batch_q16_fling(&rows, row, 600 * STIFFSPRING_Q16_ONE);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`].
+enum StiffspringError stiffspring_batch_q16_fling(struct StiffspringBatchQ16 *batch,
+                                                  uint32_t index,
+                                                  int32_t velocity);
+
+// One time step of every value; `motion` (optional) receives what it did.
+//
+// ```c
+// StiffspringBatchMotion m;
+// stiffspring_batch_q16_step(&rows, &m);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`]; `motion` is null or valid for a write.
+enum StiffspringError stiffspring_batch_q16_step(struct StiffspringBatchQ16 *batch,
+                                                 struct StiffspringBatchMotion *motion);
+
+// The indices of the values that came to rest in the last step: up to `capacity` of them
+// into `indices`, and how many into `written` (optional).
+//
+// ```c
+// uint32_t done[STIFFSPRING_BATCH_CAPACITY];
+// size_t n;
+// stiffspring_batch_q16_just_settled(&rows, done, STIFFSPRING_BATCH_CAPACITY, &n);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`]; `indices` is null or valid for writes of `capacity`
+// indices, `written` null or valid for a write.
+enum StiffspringError stiffspring_batch_q16_just_settled(const struct StiffspringBatchQ16 *batch,
+                                                         uint32_t *indices,
+                                                         size_t capacity,
+                                                         size_t *written);
+
+// The position of the value `index` names, into `out`.
+//
+// ```c
+// int32_t y;
+// stiffspring_batch_q16_position(&rows, row, &y);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`]; `out` is null or valid for a write.
+enum StiffspringError stiffspring_batch_q16_position(const struct StiffspringBatchQ16 *batch,
+                                                     uint32_t index,
+                                                     int32_t *out);
+
+// Whether the value `index` names rests on its target, into `out`.
+//
+// ```c
+// bool resting;
+// stiffspring_batch_q16_is_at_rest(&rows, row, &resting);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_position`].
+enum StiffspringError stiffspring_batch_q16_is_at_rest(const struct StiffspringBatchQ16 *batch,
+                                                       uint32_t index,
+                                                       bool *out);
+
+// How many values the batch holds, and how many of them move, into `len` and `awake`
+// (each optional).
+//
+// ```c
+// uint32_t len, awake;
+// stiffspring_batch_q16_counts(&rows, &len, &awake);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_batch_q16_drop`]; `len` and `awake` are null or valid for a write.
+enum StiffspringError stiffspring_batch_q16_counts(const struct StiffspringBatchQ16 *batch,
+                                                   uint32_t *len,
+                                                   uint32_t *awake);
+
 // The name of an error code, as the header spells it (`"STIFFSPRING_ERROR_NOT_FINITE"`), or
 // `"STIFFSPRING_ERROR_UNKNOWN"` for an integer that is no code. Never null; the string
 // is static.
@@ -154,6 +736,399 @@ extern "C" {
 // puts(stiffspring_error_name(stiffspring_value_f32_step(NULL, NULL))); /* STIFFSPRING_ERROR_NULL_POINTER */
 // ```
 const char *stiffspring_error_name(int32_t code);
+
+// A knob at rest at `initial_angle` (radians), made from `config`, written into `storage`
+// of `size` bytes. The configuration is checked here, against the loop guarantee of the
+// Rust API's `Knob::new`; the knob copies it (the configuration may be dropped after).
+//
+// Errors: what `Knob::new` refuses, by kind: `OUT_OF_RANGE` (a stiffness, damping or
+// rate outside what the guarantee allows, an angle beyond the backend's range),
+// `NOT_FINITE`, `NEEDS_ENDSTOPS`, `CAPACITY_FULL`; `NULL_POINTER`, `BUFFER_TOO_SMALL`,
+// `MISALIGNED` for the storage, `NOT_INITIALISED` or `DROPPED` for the configuration. On
+// an error the storage is unchanged.
+//
+// ```c
+// StiffspringKnobF32 knob;
+// if (stiffspring_knob_f32_init(&knob, sizeof knob, &config, 0.0f) != STIFFSPRING_ERROR_OK) { /* ... */ }
+// ```
+//
+// # Safety
+//
+// `storage` is null or points to `size` bytes the caller owns; `config` is null or points
+// to a `StiffspringKnobConfig`.
+enum StiffspringError stiffspring_knob_f32_init(struct StiffspringKnobF32 *storage,
+                                                size_t size,
+                                                const struct StiffspringKnobConfig *config,
+                                                float initial_angle);
+
+// Ends the knob: later calls on it return `DROPPED` until it is initialised again.
+//
+// ```c
+// stiffspring_knob_f32_drop(&knob);
+// ```
+//
+// # Safety
+//
+// `knob` is null or points to a `StiffspringKnobF32` the caller owns.
+enum StiffspringError stiffspring_knob_f32_drop(struct StiffspringKnobF32 *knob);
+
+// One control period: from the encoder `angle` (radians), the torque to command and the
+// events, into `out`. Cannot fail on the angle: a NaN, an angle out of reach or one the
+// rotor cannot have moved to is a sensor fault in `out->events.sensor` (the knob holds
+// its last torque, then none).
+//
+// ```c
+// StiffspringKnobOutputF32 out;
+// stiffspring_knob_f32_update(&knob, angle, &out);
+// if (out.events.detent_step != 0) ui_send(out.detent);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_f32_drop`]; `out` is null or valid for a write.
+enum StiffspringError stiffspring_knob_f32_update(struct StiffspringKnobF32 *knob,
+                                                  float angle,
+                                                  struct StiffspringKnobOutputF32 *out);
+
+// Takes up the encoder at `angle` at once, at rest (after the motor was off, or the
+// encoder re-zeroed). Cannot fail on the angle: a NaN or out-of-range one keeps the last
+// good angle.
+//
+// ```c
+// stiffspring_knob_f32_reset(&knob, angle);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_f32_drop`].
+enum StiffspringError stiffspring_knob_f32_reset(struct StiffspringKnobF32 *knob, float angle);
+
+// The current detent index, into `out`.
+//
+// ```c
+// int32_t detent;
+// stiffspring_knob_f32_detent(&knob, &detent);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_f32_drop`]; `out` is null or valid for a write.
+enum StiffspringError stiffspring_knob_f32_detent(const struct StiffspringKnobF32 *knob,
+                                                  int32_t *out);
+
+// A Q16.16 knob at rest at `initial_angle` (radians, Q16.16), made from `config`, written into `storage`
+// of `size` bytes. The configuration is checked here, against the loop guarantee of the
+// Rust API's `Knob::new`; the knob copies it (the configuration may be dropped after).
+//
+// Errors: what `Knob::new` refuses, by kind: `OUT_OF_RANGE` (a stiffness, damping or
+// rate outside what the guarantee allows, an angle beyond the backend's range),
+// `NOT_FINITE`, `NEEDS_ENDSTOPS`, `CAPACITY_FULL`; `NULL_POINTER`, `BUFFER_TOO_SMALL`,
+// `MISALIGNED` for the storage, `NOT_INITIALISED` or `DROPPED` for the configuration. On
+// an error the storage is unchanged.
+//
+// ```c
+// StiffspringKnobQ16 knob;
+// if (stiffspring_knob_q16_init(&knob, sizeof knob, &config, 0) != STIFFSPRING_ERROR_OK) { /* ... */ }
+// ```
+//
+// # Safety
+//
+// `storage` is null or points to `size` bytes the caller owns; `config` is null or points
+// to a `StiffspringKnobConfig`.
+enum StiffspringError stiffspring_knob_q16_init(struct StiffspringKnobQ16 *storage,
+                                                size_t size,
+                                                const struct StiffspringKnobConfig *config,
+                                                int32_t initial_angle);
+
+// Ends the knob: later calls on it return `DROPPED` until it is initialised again.
+//
+// ```c
+// stiffspring_knob_q16_drop(&knob);
+// ```
+//
+// # Safety
+//
+// `knob` is null or points to a `StiffspringKnobQ16` the caller owns.
+enum StiffspringError stiffspring_knob_q16_drop(struct StiffspringKnobQ16 *knob);
+
+// One control period: from the encoder `angle` (radians, Q16.16), the torque to command and the
+// events, into `out`. Cannot fail on the angle: a NaN, an angle out of reach or one the
+// rotor cannot have moved to is a sensor fault in `out->events.sensor` (the knob holds
+// its last torque, then none).
+//
+// ```c
+// StiffspringKnobOutputQ16 out;
+// stiffspring_knob_q16_update(&knob, angle, &out);
+// if (out.events.detent_step != 0) ui_send(out.detent);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_q16_drop`]; `out` is null or valid for a write.
+enum StiffspringError stiffspring_knob_q16_update(struct StiffspringKnobQ16 *knob,
+                                                  int32_t angle,
+                                                  struct StiffspringKnobOutputQ16 *out);
+
+// Takes up the encoder at `angle` at once, at rest (after the motor was off, or the
+// encoder re-zeroed). Cannot fail on the angle: a NaN or out-of-range one keeps the last
+// good angle.
+//
+// ```c
+// stiffspring_knob_q16_reset(&knob, angle);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_q16_drop`].
+enum StiffspringError stiffspring_knob_q16_reset(struct StiffspringKnobQ16 *knob, int32_t angle);
+
+// The current detent index, into `out`.
+//
+// ```c
+// int32_t detent;
+// stiffspring_knob_q16_detent(&knob, &detent);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_q16_drop`]; `out` is null or valid for a write.
+enum StiffspringError stiffspring_knob_q16_detent(const struct StiffspringKnobQ16 *knob,
+                                                  int32_t *out);
+
+// A knob run at `rate` hertz, driving a rotor of moment of inertia `inertia` (kg·m²)
+// with a motor that gives at most `torque_limit` (N·m), read by an encoder of
+// `counts_per_turn`; no detents, endstops or springs yet, a damping ratio of 0.7, one
+// period of latency, a hysteresis of two counts (the Rust API's `KnobConfig::new`).
+// Nothing is checked until a knob is made from it.
+//
+// ```c
+// StiffspringKnobConfig config;
+// stiffspring_knob_config_init(&config, sizeof config, 1000.0, 1e-5, 0.05, 16384);
+// ```
+//
+// # Safety
+//
+// `storage` is null or points to `size` bytes the caller owns.
+enum StiffspringError stiffspring_knob_config_init(struct StiffspringKnobConfig *storage,
+                                                   size_t size,
+                                                   double rate,
+                                                   double inertia,
+                                                   double torque_limit,
+                                                   uint32_t counts_per_turn);
+
+// When the torque acts: `STIFFSPRING_LATENCY_ONE_STEP` (the default) or
+// `STIFFSPRING_LATENCY_SAME_STEP`; any other integer is `OUT_OF_RANGE`.
+//
+// ```c
+// stiffspring_knob_config_latency(&config, STIFFSPRING_LATENCY_ONE_STEP);
+// ```
+//
+// # Safety
+//
+// `config` is null or points to a `StiffspringKnobConfig` the caller owns.
+enum StiffspringError stiffspring_knob_config_latency(struct StiffspringKnobConfig *config,
+                                                      int32_t latency);
+
+// The magnetic detents' angles (radians): `count` of them from `angles`, at most
+// `STIFFSPRING_KNOB_MAX_MAGNETS` (more is `CAPACITY_FULL`, and the configuration is
+// unchanged).
+//
+// ```c
+// static const double magnets[] = {0.0, 1.0};
+// stiffspring_knob_config_magnets(&config, magnets, 2);
+// ```
+//
+// # Safety
+//
+// `config` as in [`stiffspring_knob_config_latency`]; `angles` is null (with `count` 0)
+// or valid for reads of `count` doubles.
+enum StiffspringError stiffspring_knob_config_magnets(struct StiffspringKnobConfig *config,
+                                                      const double *angles,
+                                                      size_t count);
+
+// The damping ratio of the designed spring (default 0.7). As the Rust API's `KnobConfig::damping_ratio`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_damping_ratio(&config, 0.7);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_damping_ratio(struct StiffspringKnobConfig *config,
+                                                            double zeta);
+
+// The damping in N·m·s/rad, instead of a ratio. As the Rust API's `KnobConfig::damping`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_damping(&config, 2e-4);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_damping(struct StiffspringKnobConfig *config,
+                                                      double damping);
+
+// Endstops at `min` and `max` (radians). As the Rust API's `KnobConfig::endstops`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_endstops(&config, 0.0, 3.0);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_endstops(struct StiffspringKnobConfig *config,
+                                                       double min,
+                                                       double max);
+
+// The endstops' stiffness in N·m/rad, added beyond the stops (default: up to 4 times the
+// stiffness inside the range, the stiffest that meets the loop guarantee). As the Rust API's `KnobConfig::endstop_stiffness`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_endstop_stiffness(&config, 0.15);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_endstop_stiffness(struct StiffspringKnobConfig *config,
+                                                                double stiffness);
+
+// This many detents spread over the endstops (which it needs). As the Rust API's `KnobConfig::detent_count`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_detent_count(&config, 16);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_detent_count(struct StiffspringKnobConfig *config,
+                                                           uint32_t count);
+
+// Detents this wide (radians), from the detent origin. As the Rust API's `KnobConfig::detent_width`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_detent_width(&config, 0.1);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_detent_width(struct StiffspringKnobConfig *config,
+                                                           double width);
+
+// Where detent 0 is centred without endstops (radians, default 0). As the Rust API's `KnobConfig::detent_origin`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_detent_origin(&config, 0.0);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_detent_origin(struct StiffspringKnobConfig *config,
+                                                            double origin);
+
+// The detents' stiffness in N·m/rad. As the Rust API's `KnobConfig::detent_stiffness`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_detent_stiffness(&config, 0.05);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_detent_stiffness(struct StiffspringKnobConfig *config,
+                                                               double stiffness);
+
+// The detents' peak torque in N·m, instead of a stiffness. As the Rust API's `KnobConfig::detent_torque`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_detent_torque(&config, 0.01);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_detent_torque(struct StiffspringKnobConfig *config,
+                                                            double peak);
+
+// Where a detent switches to the next, as a fraction of its width (default 0.55). As the Rust API's `KnobConfig::snap_point`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_snap_point(&config, 0.55);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_snap_point(struct StiffspringKnobConfig *config,
+                                                         double fraction);
+
+// The events' hysteresis (radians; default two encoder counts). As the Rust API's `KnobConfig::hysteresis`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_hysteresis(&config, 2.0 * 6.283185307179586 / 16384);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_hysteresis(struct StiffspringKnobConfig *config,
+                                                         double angle);
+
+// A spring of `stiffness` N·m/rad back to `centre` (radians). As the Rust API's `KnobConfig::return_to_centre`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_return_to_centre(&config, 0.0, 0.02);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_return_to_centre(struct StiffspringKnobConfig *config,
+                                                               double centre,
+                                                               double stiffness);
+
+// The magnetic detents' stiffness in N·m/rad. As the Rust API's `KnobConfig::magnet_stiffness`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_magnet_stiffness(&config, 0.05);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_magnet_stiffness(struct StiffspringKnobConfig *config,
+                                                               double stiffness);
+
+// How near a magnet captures the rotor (radians). As the Rust API's `KnobConfig::magnet_radius`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_magnet_radius(&config, 0.05);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_magnet_radius(struct StiffspringKnobConfig *config,
+                                                            double radius);
+
+// The fastest the rotor turns (rad/s): above it the torque goes off, and a reading that
+// moves farther than `max_speed·dt` is a sensor fault (default: none). As the Rust API's `KnobConfig::max_speed`; checked when a knob is made.
+//
+// ```c
+// stiffspring_knob_config_max_speed(&config, 200.0);
+// ```
+//
+// # Safety
+//
+// As [`stiffspring_knob_config_latency`].
+enum StiffspringError stiffspring_knob_config_max_speed(struct StiffspringKnobConfig *config,
+                                                        double max_speed);
 
 // The exact tuning of a continuous spring of `frequency` hertz and damping ratio
 // `damping_ratio`, sampled every `dt` seconds: the discrete spring hits the continuous

@@ -2,7 +2,10 @@
 //! and the crate's `unsafe`, all of it here.
 //!
 //! A storage struct (`StiffspringValueF32`, ...) is an array of `u64` words, so that C
-//! gives it the alignment of `uint64_t` (8 on the Cortex-M EABI and on 64-bit hosts).
+//! gives it the alignment of `uint64_t` (8 on the Cortex-M EABI and on 64-bit hosts). In
+//! Rust the words are `MaybeUninit<u64>` (which cbindgen writes as `uint64_t`): an object's
+//! padding bytes are uninitialised, and a Rust copy of the storage as plain `u64`s would
+//! read them (Miri found this).
 //! Inside it lies a [`Slot`]: a tag word, then the Rust object. The tag is
 //! [`Tag::live`] of the type while the object lives and [`Tag::dropped`] after its `drop`;
 //! anything else (zeroed storage, another type's object, garbage) is no object of the type.
@@ -14,7 +17,10 @@
 //! and no other call uses the same object at the same time. Everything else is checked.
 
 use crate::error::StiffspringError;
-use core::mem::{align_of, size_of};
+use core::mem::{MaybeUninit, align_of, size_of};
+
+/// A zeroed word of storage, as a C `static` or `= {0}` gives.
+pub const ZERO: MaybeUninit<u64> = MaybeUninit::new(0);
 
 /// The alignment of every storage struct: that of `uint64_t`.
 pub const STIFFSPRING_STORAGE_ALIGN: usize = 8;
@@ -211,6 +217,15 @@ pub unsafe fn read_in<T: Copy>(input: *const T) -> Result<T, StiffspringError> {
     Ok(unsafe { input.read() })
 }
 
+/// Whether storage that nothing was written to is still all zero (the tests' check that a
+/// refused call wrote nothing).
+#[cfg(test)]
+pub(crate) fn is_zero(words: &[MaybeUninit<u64>]) -> bool {
+    // SAFETY: the tests call this on storage they zeroed; were an object written there,
+    // its padding would be read uninitialised, which Miri reports as the bug it would be.
+    words.iter().all(|w| unsafe { w.assume_init() } == 0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -303,5 +318,40 @@ mod tests {
         assert_ne!(TAG.dropped(), 0);
         assert_ne!(TAG.live(), OTHER.live());
         assert_ne!(TAG.live(), TAG.dropped());
+    }
+}
+
+/// The storage structs are no larger than the objects need on a 64-bit host (the largest
+/// target), so that a firmware declares no bytes it does not use.
+#[cfg(all(test, target_pointer_width = "64"))]
+mod storage_sizes {
+    use super::Slot;
+    use core::mem::size_of;
+
+    fn words<T>() -> usize {
+        size_of::<Slot<T>>().div_ceil(8)
+    }
+
+    #[test]
+    fn each_storage_has_the_words_of_its_object() {
+        use crate::{batch, knob, knob_config, tuning, value};
+        use stiffspring::{I16F16, Knob, KnobConfig, SpringValue, Tuning};
+        assert_eq!(tuning::STIFFSPRING_TUNING_WORDS, words::<Tuning>());
+        assert_eq!(
+            value::STIFFSPRING_VALUE_F32_WORDS,
+            words::<SpringValue<f32>>()
+        );
+        assert_eq!(
+            value::STIFFSPRING_VALUE_Q16_WORDS,
+            words::<SpringValue<I16F16>>()
+        );
+        assert_eq!(batch::STIFFSPRING_BATCH_F32_WORDS, batch::words::<f32>());
+        assert_eq!(batch::STIFFSPRING_BATCH_Q16_WORDS, batch::words::<I16F16>());
+        assert_eq!(
+            knob_config::STIFFSPRING_KNOB_CONFIG_WORDS,
+            words::<KnobConfig>()
+        );
+        assert_eq!(knob::STIFFSPRING_KNOB_F32_WORDS, words::<Knob<f32>>());
+        assert_eq!(knob::STIFFSPRING_KNOB_Q16_WORDS, words::<Knob<I16F16>>());
     }
 }

@@ -64,8 +64,11 @@
 #![warn(clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used, clippy::panic))]
 
+pub mod batch;
 pub mod error;
 pub mod handle;
+pub mod knob;
+pub mod knob_config;
 
 pub mod q16;
 pub mod tuning;

@@ -3,6 +3,7 @@
 
 use crate::error::{StiffspringError, code};
 use crate::handle::{self, Tag};
+use core::mem::MaybeUninit;
 use stiffspring::Tuning;
 
 /// 64-bit words of a [`StiffspringTuning`].
@@ -22,7 +23,7 @@ pub(crate) const TAG: Tag = Tag::new(1);
 /// ```
 #[repr(C)]
 pub struct StiffspringTuning {
-    opaque: [u64; STIFFSPRING_TUNING_WORDS],
+    opaque: [MaybeUninit<u64>; STIFFSPRING_TUNING_WORDS],
 }
 
 #[cfg(test)]
@@ -30,7 +31,7 @@ impl StiffspringTuning {
     /// Zeroed storage, as a C `static` gives.
     pub(crate) fn zeroed_for_tests() -> Self {
         StiffspringTuning {
-            opaque: [0; STIFFSPRING_TUNING_WORDS],
+            opaque: [handle::ZERO; STIFFSPRING_TUNING_WORDS],
         }
     }
 }
@@ -195,6 +196,6 @@ mod tests {
                 StiffspringError::NullPointer
             );
         }
-        assert_eq!(t.opaque, [0; STIFFSPRING_TUNING_WORDS]);
+        assert!(handle::is_zero(&t.opaque));
     }
 }

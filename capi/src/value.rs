@@ -7,6 +7,7 @@ use crate::error::{StiffspringError, code};
 use crate::handle::{self, Tag};
 use crate::q16;
 use crate::tuning::{self, StiffspringTuning};
+use core::mem::MaybeUninit;
 use stiffspring::{I16F16, Motion, RestThreshold, Scalar, SpringValue};
 
 /// 64-bit words of a [`StiffspringValueF32`].
@@ -36,7 +37,7 @@ const TAG_Q16: Tag = Tag::new(3);
 /// ```
 #[repr(C)]
 pub struct StiffspringValueF32 {
-    opaque: [u64; STIFFSPRING_VALUE_F32_WORDS],
+    opaque: [MaybeUninit<u64>; STIFFSPRING_VALUE_F32_WORDS],
 }
 
 /// Storage for a Q16.16 value; `stiffspring_value_q16_init` fills it.
@@ -46,7 +47,7 @@ pub struct StiffspringValueF32 {
 /// ```
 #[repr(C)]
 pub struct StiffspringValueQ16 {
-    opaque: [u64; STIFFSPRING_VALUE_Q16_WORDS],
+    opaque: [MaybeUninit<u64>; STIFFSPRING_VALUE_Q16_WORDS],
 }
 
 /// What a step did, as the Rust API's `Motion`.
@@ -797,13 +798,13 @@ mod tests {
 
     fn f32_storage() -> StiffspringValueF32 {
         StiffspringValueF32 {
-            opaque: [0; STIFFSPRING_VALUE_F32_WORDS],
+            opaque: [handle::ZERO; STIFFSPRING_VALUE_F32_WORDS],
         }
     }
 
     fn q16_storage() -> StiffspringValueQ16 {
         StiffspringValueQ16 {
-            opaque: [0; STIFFSPRING_VALUE_Q16_WORDS],
+            opaque: [handle::ZERO; STIFFSPRING_VALUE_Q16_WORDS],
         }
     }
 
@@ -928,10 +929,7 @@ mod tests {
                 stiffspring_value_f32_init(&mut c, size, &t, f32::NAN),
                 StiffspringError::NotFinite
             );
-            assert_eq!(
-                c.opaque, [0; STIFFSPRING_VALUE_F32_WORDS],
-                "a failed init writes nothing"
-            );
+            assert!(handle::is_zero(&c.opaque), "a failed init writes nothing");
             let odd = c
                 .opaque
                 .as_mut_ptr()
