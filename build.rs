@@ -22,7 +22,8 @@ fn main() {
     println!(
         "cargo::rustc-check-cfg=cfg(size, values(\"empty\", \"value_f32_raw\", \
          \"value_f32_raw_runtime\", \"value_f32_exact_const\", \"value_f32_exact_runtime\", \
-         \"value_i16f16_raw\", \"batch16_f32\", \"rope_f32\", \"knob_f32\", \"everything\"))"
+         \"value_i16f16_raw\", \"batch16_f32\", \"rope_f32\", \"knob_f32\", \"everything\", \
+         \"c_twin_value\", \"c_twin_batch\", \"c_twin_knob\"))"
     );
 
     // ARMv6-M (Cortex-M0/M0+/M1) and ARMv8-M Baseline (M23) multiply 32×32 → 32 bits

@@ -127,7 +127,7 @@ unsafe fn init<S: Scalar>(
         handle::init(storage, size, tag, || {
             let tuning = tuning::read(tuning)?;
             Ok(Batch::<S> {
-                batch: SpringBatch::new(&tuning)?,
+                batch: SpringBatch::new(tuning)?,
                 live: [None; N],
                 generation: [0; N],
             })

@@ -181,7 +181,7 @@ unsafe fn init<S: Scalar>(
     code(unsafe {
         handle::init(storage, size, tag, || {
             let config = knob_config::read(config)?;
-            Ok(Knob::<S>::new(&config, angle)?)
+            Ok(Knob::<S>::new(config, angle)?)
         })
     })
 }

@@ -54,16 +54,16 @@ impl StiffspringKnobConfig {
     }
 }
 
-/// The configuration in `config`, copied out.
+/// The configuration in `config`, by reference (a copy would cost a `memcpy`).
 ///
 /// # Safety
 ///
 /// As [`handle::get_ref`].
-pub(crate) unsafe fn read(
+pub(crate) unsafe fn read<'a>(
     config: *const StiffspringKnobConfig,
-) -> Result<KnobConfig, StiffspringError> {
+) -> Result<&'a KnobConfig, StiffspringError> {
     // SAFETY: the caller's contract.
-    unsafe { handle::get_ref::<KnobConfig>(config.cast(), TAG) }.copied()
+    unsafe { handle::get_ref::<KnobConfig>(config.cast(), TAG) }
 }
 
 /// Replaces the configuration in `config` by `f` of it.

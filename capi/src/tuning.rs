@@ -36,14 +36,16 @@ impl StiffspringTuning {
     }
 }
 
-/// The tuning in `tuning`, copied out.
+/// The tuning in `tuning`, by reference (a copy would cost a `memcpy` in every init).
 ///
 /// # Safety
 ///
 /// As [`handle::get_ref`].
-pub(crate) unsafe fn read(tuning: *const StiffspringTuning) -> Result<Tuning, StiffspringError> {
+pub(crate) unsafe fn read<'a>(
+    tuning: *const StiffspringTuning,
+) -> Result<&'a Tuning, StiffspringError> {
     // SAFETY: the caller's contract is `get_ref`'s.
-    unsafe { handle::get_ref::<Tuning>(tuning.cast(), TAG) }.copied()
+    unsafe { handle::get_ref::<Tuning>(tuning.cast(), TAG) }
 }
 
 /// Writes `make()`'s tuning into `out`.

@@ -94,7 +94,7 @@ unsafe fn init<S: Scalar>(
     code(unsafe {
         handle::init(storage, size, tag, || {
             let tuning = tuning::read(tuning)?;
-            Ok(SpringValue::<S>::new([position], &tuning)?)
+            Ok(SpringValue::<S>::new([position], tuning)?)
         })
     })
 }
