@@ -30,7 +30,7 @@ static StiffspringError knob_scene_config(StiffspringKnobConfig *config) {
 }
 
 /* The knob's sweep; returns the failures. */
-static int knob_sweep_f32(void) {
+__attribute__((unused)) static int knob_sweep_f32(void) {
     StiffspringKnobConfig config;
     StiffspringKnobF32 knob;
     StiffspringError e = knob_scene_config(&config);

@@ -77,7 +77,7 @@ static int value_play_track(const ValueTrack *track, double *worst_moving, doubl
 }
 
 /* Plays every track and prints the worst deviations; returns the failures. */
-static int value_scene_f32(void) {
+__attribute__((unused)) static int value_scene_f32(void) {
     int failures = 0;
     for (int i = 0; i < VALUE_TRACKS; i++) {
         double moving = 0.0, resting = 0.0;
