@@ -23,7 +23,8 @@ fn main() {
         "cargo::rustc-check-cfg=cfg(size, values(\"empty\", \"value_f32_raw\", \
          \"value_f32_raw_runtime\", \"value_f32_exact_const\", \"value_f32_exact_runtime\", \
          \"value_i16f16_raw\", \"batch16_f32\", \"rope_f32\", \"knob_f32\", \
-         \"knob_f32_const\", \"knob_i16f16_const\", \"everything\"))"
+         \"knob_f32_const\", \"knob_i16f16_const\", \"everything\", \
+         \"c_twin_value\", \"c_twin_batch\", \"c_twin_knob\"))"
     );
 
     // ARMv6-M (Cortex-M0/M0+/M1) and ARMv8-M Baseline (M23) multiply 32×32 → 32 bits

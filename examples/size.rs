@@ -16,6 +16,7 @@
 //! | `knob_f32_const` | the same knob designed at compile time (`knob!`), started with `Knob::from_design` |
 //! | `knob_i16f16_const` | the same in `I16F16`, designed at compile time |
 //! | `everything` | all of the above in one firmware |
+//! | `c_twin_value`, `c_twin_batch`, `c_twin_knob` | the Rust twins of the C API's size firmwares (`capi/c/m4f/size.c`, `scripts/capi-size`): the same calls with every object kept in memory between them, as a C caller's storage keeps it, so that the difference is the C layer's own |
 //!
 //! Every input that is not meant to be a constant goes through `black_box`, so that the
 //! optimiser cannot fold a scene into constants. The panic handler does not format its
@@ -67,7 +68,85 @@ fn configured() {
     knob_f32_const();
     #[cfg(any(size = "knob_i16f16_const", size = "everything"))]
     knob_i16f16_const();
+    #[cfg(size = "c_twin_value")]
+    c_twin::value();
+    #[cfg(size = "c_twin_batch")]
+    c_twin::batch();
+    #[cfg(size = "c_twin_knob")]
+    c_twin::knob();
     black_box(());
+}
+
+/// The Rust twins of `capi/c/m4f/size.c`: what its C firmwares do through the C API, in
+/// Rust. A C caller's objects (the tuning, the value, the knob's configuration) live in its
+/// storage, where the library sees nothing of them at compile time: here `black_box` puts
+/// each in memory the optimiser cannot see through, so that the twin pays the library's
+/// code as the C firmware does and the difference is the C layer's (its checks, the error
+/// codes, one function per call).
+#[allow(dead_code)]
+mod c_twin {
+    use core::hint::black_box;
+    use stiffspring::{Knob, KnobConfig, SpringBatch, SpringValue, Tuning};
+
+    fn tuning() -> Option<Tuning> {
+        let t = Tuning::from_frequency(black_box(2.0), black_box(0.7), black_box(1.0 / 60.0));
+        t.ok().map(black_box)
+    }
+
+    pub fn value() {
+        let Some(t) = tuning() else { return };
+        let Ok(v) = SpringValue::<f32, 1>::new([black_box(0.0)], &t) else {
+            return;
+        };
+        let mut v = black_box(v);
+        v.set_target([black_box(100.0)]);
+        for _ in 0..black_box(60) {
+            let _ = black_box(v.step());
+        }
+        black_box(v.position());
+    }
+
+    pub fn batch() {
+        let Some(t) = tuning() else { return };
+        let Ok(b) = SpringBatch::<f32, 1, 16>::new(&t) else {
+            return;
+        };
+        let mut b = black_box(b);
+        let mut last = None;
+        for i in 0..16 {
+            if let Ok(k) = b.push([black_box(0.0)]) {
+                b.set_target(k, [10.0 * i as f32]);
+                last = Some(k);
+            }
+        }
+        for _ in 0..black_box(60) {
+            let _ = black_box(b.step());
+        }
+        if let Some(k) = last {
+            black_box(b.position(k));
+        }
+    }
+
+    pub fn knob() {
+        let config = KnobConfig::new(
+            black_box(1_000.0),
+            black_box(1e-5),
+            black_box(0.05),
+            black_box(16384),
+        )
+        .endstops(0.0, black_box(3.0))
+        .detent_count(black_box(16))
+        .detent_stiffness(black_box(0.05));
+        let config = black_box(config);
+        let Ok(knob) = Knob::<f32>::new(&config, black_box(0.0)) else {
+            return;
+        };
+        let mut knob = black_box(knob);
+        for n in 0..black_box(1000) {
+            let out = knob.update(n as f32 * 1e-3);
+            black_box(out.torque);
+        }
+    }
 }
 
 /// A UI value at 60 Hz: set up from `tuning`, sent to a target, stepped for a second.

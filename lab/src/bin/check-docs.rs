@@ -174,14 +174,18 @@ impl Repo {
                 ["tests", f] | [_, "tests", f] => f.strip_suffix(".rs").map(String::from),
                 ["tests", d, "main.rs"] | [_, "tests", d, "main.rs"] => Some(d.to_string()),
                 ["tests", d, ..] | [_, "tests", d, ..] => Some(d.to_string()),
-                ["src", ..] | ["lab", "src", ..] | ["firmware", "src", ..] => Some("lib".into()),
+                ["src", ..]
+                | ["lab", "src", ..]
+                | ["firmware", "src", ..]
+                | ["capi", "src", ..] => Some("lib".into()),
                 _ => None,
             };
             match parts.as_slice() {
-                ["examples", f] => {
+                // The root's examples and a member crate's (`capi/examples/…`).
+                ["examples", f] | [_, "examples", f] => {
                     examples.insert(f.trim_end_matches(".rs").to_string());
                 }
-                ["examples", d, "main.rs"] => {
+                ["examples", d, "main.rs"] | [_, "examples", d, "main.rs"] => {
                     examples.insert(d.to_string());
                 }
                 ["benches", f] => {
