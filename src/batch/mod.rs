@@ -15,12 +15,14 @@ use crate::tuning::Tuning;
 use heapless::Vec;
 
 mod index;
+mod moved;
 mod setters;
 mod stagger;
 mod step;
 mod trail;
 
 pub use index::{BatchIndex, BatchMotion};
+pub use moved::Moved;
 pub use stagger::Stagger;
 pub use trail::Trail;
 
@@ -61,6 +63,13 @@ pub struct SpringBatch<S: Scalar, const D: usize, const N: usize> {
     awake: Vec<u16, N>,
     /// The slots that settled in the last step.
     settled: Vec<u16, N>,
+    /// By slot: the position [`SpringBatch::moved`] last reported (at `push`, the pushed
+    /// position). Written only there and at `push`: the step never touches it.
+    reported: [[S; D]; N],
+    /// The slots woken since `moved` last reported them at rest, in no order, and the
+    /// same as flags by slot.
+    unreported: Vec<u16, N>,
+    is_unreported: [bool; N],
     /// Slots `0..used` have held a value; the rest never did.
     used: usize,
     len: usize,
@@ -100,6 +109,9 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             is_awake: [false; N],
             awake: Vec::new(),
             settled: Vec::new(),
+            reported: [[S::ZERO; D]; N],
+            unreported: Vec::new(),
+            is_unreported: [false; N],
             used: 0,
             len: 0,
             gains: gains_of::<S>(tuning)?,
@@ -182,6 +194,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         };
         self.live[slot] = true;
         self.target[slot] = position;
+        self.reported[slot] = position;
         self.offset[slot] = [S::STATE_ZERO; D];
         self.step_velocity[slot] = [S::STATE_ZERO; D];
         self.len += 1;
@@ -206,6 +219,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         let slot = self.slot(index)?;
         let position = self.position_of(slot);
         self.sleep(slot);
+        self.forget_report(slot);
         self.live[slot] = false;
         self.generation[slot] = self.generation[slot].wrapping_add(1);
         self.offset[slot] = [S::STATE_ZERO; D];
@@ -418,6 +432,11 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             self.is_awake[slot] = true;
             // Cannot fail: a slot is in the list at most once.
             let _ = self.awake.push(slot as u16);
+            if !self.is_unreported[slot] {
+                self.is_unreported[slot] = true;
+                // Cannot fail: as above.
+                let _ = self.unreported.push(slot as u16);
+            }
         }
     }
 
