@@ -88,7 +88,7 @@ mod start;
 mod tuning;
 mod value;
 
-pub use batch::{BatchIndex, BatchMotion, Moved, SpringBatch, Stagger, Trail};
+pub use batch::{BatchIndex, BatchMotion, Moved, SpringBatch, Stagger, Trail, TuningSlot};
 pub use bounds::Bounds;
 pub use decay::Decay;
 pub use error::{Bound, Error, Parameter, Remedy};

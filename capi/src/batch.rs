@@ -17,11 +17,11 @@ use stiffspring::{BatchIndex, I16F16, Scalar, SpringBatch};
 pub const STIFFSPRING_BATCH_CAPACITY: usize = 16;
 
 /// 64-bit words of a [`StiffspringBatchF32`].
-pub const STIFFSPRING_BATCH_F32_WORDS: usize = 110;
+pub const STIFFSPRING_BATCH_F32_WORDS: usize = 113;
 /// Bytes of a [`StiffspringBatchF32`], for a buffer of one's own.
 pub const STIFFSPRING_BATCH_F32_SIZE: usize = STIFFSPRING_BATCH_F32_WORDS * 8;
 /// 64-bit words of a [`StiffspringBatchQ16`].
-pub const STIFFSPRING_BATCH_Q16_WORDS: usize = 138;
+pub const STIFFSPRING_BATCH_Q16_WORDS: usize = 141;
 /// Bytes of a [`StiffspringBatchQ16`].
 pub const STIFFSPRING_BATCH_Q16_SIZE: usize = STIFFSPRING_BATCH_Q16_WORDS * 8;
 

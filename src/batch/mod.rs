@@ -7,10 +7,9 @@
 //! list of their slots, so settled values cost nothing.
 
 use crate::error::{Error, Parameter};
-use crate::input::{check_position, gains_of};
+use crate::input::check_position;
 use crate::rest::{RestBand, RestThreshold};
 use crate::scalar::Scalar;
-use crate::start::Start;
 use crate::tuning::Tuning;
 use heapless::Vec;
 
@@ -20,14 +19,18 @@ mod setters;
 mod stagger;
 mod step;
 mod trail;
+mod tunings;
 
 pub use index::{BatchIndex, BatchMotion};
 pub use moved::Moved;
 pub use stagger::Stagger;
 pub use trail::Trail;
+use tunings::Tuned;
+pub use tunings::TuningSlot;
 
 /// Up to `N` values of `D` dimensions in backend `S`, sharing one [`Tuning`] (and so one
-/// time step).
+/// time step), or, with `T > 1`, each value one of up to `T` tunings of the same time step
+/// ([`add_tuning`](SpringBatch::add_tuning)).
 ///
 /// Like [`SpringValue`](crate::SpringValue), the UI path cannot fail: `set_target`,
 /// `set_position` and `fling` ignore a stale index or NaN and saturate what is out of
@@ -52,7 +55,7 @@ pub use trail::Trail;
 /// ```
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct SpringBatch<S: Scalar, const D: usize, const N: usize> {
+pub struct SpringBatch<S: Scalar, const D: usize, const N: usize, const T: usize = 1> {
     offset: [[S::State; D]; N],
     step_velocity: [[S::State; D]; N],
     target: [[S; D]; N],
@@ -73,23 +76,25 @@ pub struct SpringBatch<S: Scalar, const D: usize, const N: usize> {
     /// Slots `0..used` have held a value; the rest never did.
     used: usize,
     len: usize,
-    gains: S::Gains,
-    band: RestBand<S>,
-    start: Start<S>,
+    /// The tunings values can have; `tunings[..tuning_count]` are set, the first is the
+    /// one `new` (or `set_tuning`) was given.
+    tunings: [Tuned<S>; T],
+    tuning_count: u8,
+    /// By slot: which of `tunings` the value has (always below `tuning_count`).
+    tuning_of: [u8; N],
     threshold: RestThreshold,
-    tuning: Tuning,
     check_every: u16,
     until_check: u16,
 }
 
-impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
+impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D, N, T> {
     /// An empty batch of values tuned by `tuning` (which also sets the time step), with
     /// the default [`RestThreshold`], testing rest every step.
     ///
     /// # Errors
     ///
     /// As [`SpringValue::new`](crate::SpringValue::new) for the tuning. Capacities above
-    /// 65 535 do not compile.
+    /// 65 535, and a number of tunings `T` of 0 or above 255, do not compile.
     ///
     /// ```
     /// use stiffspring::{SpringBatch, Tuning};
@@ -99,7 +104,9 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// ```
     pub fn new(tuning: &Tuning) -> Result<Self, Error> {
         const { assert!(N <= u16::MAX as usize) };
+        const { assert!(T >= 1 && T <= u8::MAX as usize) };
         let threshold = RestThreshold::default();
+        let tuned = Tuned::new(tuning, &threshold)?;
         Ok(SpringBatch {
             offset: [[S::STATE_ZERO; D]; N],
             step_velocity: [[S::STATE_ZERO; D]; N],
@@ -114,11 +121,10 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             is_unreported: [false; N],
             used: 0,
             len: 0,
-            gains: gains_of::<S>(tuning)?,
-            band: RestBand::new(&threshold, tuning),
-            start: Start::new(tuning)?,
+            tunings: [tuned; T],
+            tuning_count: 1,
+            tuning_of: [0; N],
             threshold,
-            tuning: *tuning,
             check_every: 1,
             until_check: 0,
         })
@@ -135,7 +141,9 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// ```
     pub fn with_rest_threshold(mut self, threshold: RestThreshold) -> Self {
         self.threshold = threshold;
-        self.band = RestBand::new(&threshold, &self.tuning);
+        for t in self.tunings.iter_mut() {
+            t.band = RestBand::new(&threshold, &t.tuning);
+        }
         self
     }
 
@@ -195,6 +203,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         self.live[slot] = true;
         self.target[slot] = position;
         self.reported[slot] = position;
+        self.tuning_of[slot] = 0;
         self.offset[slot] = [S::STATE_ZERO; D];
         self.step_velocity[slot] = [S::STATE_ZERO; D];
         self.len += 1;
@@ -229,7 +238,8 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     }
 
     /// Retunes every value (a new spring, a new time step, or both), keeping positions
-    /// and velocities.
+    /// and velocities. With `T > 1` every value then has this tuning, and the slots that
+    /// [`add_tuning`](Self::add_tuning) gave are stale.
     ///
     /// # Errors
     ///
@@ -243,21 +253,20 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn set_tuning(&mut self, tuning: &Tuning) -> Result<(), Error> {
-        let gains = gains_of::<S>(tuning)?;
-        let start = Start::<S>::new(tuning)?;
+        let tuned = Tuned::new(tuning, &self.threshold)?;
         let mut velocities = self.step_velocity;
         for &slot in self.awake.iter() {
             let slot = slot as usize;
+            let old = self.tuned(slot).start;
             for k in 0..D {
                 let (x, u) = (self.offset[slot][k], self.step_velocity[slot][k]);
-                velocities[slot][k] = start.step_velocity(x, self.start.velocity(x, u))?;
+                velocities[slot][k] = tuned.start.step_velocity(x, old.velocity(x, u))?;
             }
         }
         self.step_velocity = velocities;
-        self.gains = gains;
-        self.start = start;
-        self.tuning = *tuning;
-        self.band = RestBand::new(&self.threshold, tuning);
+        self.tunings = [tuned; T];
+        self.tuning_count = 1;
+        self.tuning_of = [0; N];
         Ok(())
     }
 
@@ -317,11 +326,10 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// ```
     pub fn velocity(&self, index: BatchIndex) -> Option<[S; D]> {
         let s = self.slot(index)?;
+        let start = self.tuned(s).start;
         let mut v = [S::ZERO; D];
         for (k, v) in v.iter_mut().enumerate() {
-            *v = self
-                .start
-                .velocity(self.offset[s][k], self.step_velocity[s][k]);
+            *v = start.velocity(self.offset[s][k], self.step_velocity[s][k]);
         }
         Some(v)
     }
@@ -375,7 +383,9 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         self.len == 0
     }
 
-    /// The tuning all values share.
+    /// The tuning all values share: the one [`new`](Self::new) or
+    /// [`set_tuning`](Self::set_tuning) was given (with `T > 1`, the tuning of the values
+    /// given no other; [`tuning_of`](Self::tuning_of) tells a value's).
     ///
     /// ```
     /// use stiffspring::{SpringBatch, Tuning};
@@ -384,7 +394,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn tuning(&self) -> Tuning {
-        self.tuning
+        self.tunings[0].tuning
     }
 
     /// The rest threshold.

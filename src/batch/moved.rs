@@ -29,7 +29,7 @@ pub struct Moved<S: Scalar, const D: usize> {
     pub to: [S; D],
 }
 
-impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
+impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D, N, T> {
     /// Every value whose position changed since the last call, with the position that
     /// call reported (or where the value was pushed) and its position now; the new
     /// positions become the reported ones. Call it once per frame, after the steps, and

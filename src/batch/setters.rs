@@ -5,7 +5,7 @@ use crate::error::{Error, Parameter};
 use crate::input::{check_position, saturate};
 use crate::scalar::Scalar;
 
-impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
+impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D, N, T> {
     /// Moves a value's target; see [`SpringValue::set_target`](crate::SpringValue::set_target).
     /// A stale index or a NaN component is ignored; out-of-range input saturates.
     ///
@@ -21,6 +21,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         let Some(slot) = self.slot(index) else {
             return;
         };
+        let start = self.tuned(slot).start;
         let mut t = target;
         for v in t.iter_mut() {
             match saturate(*v) {
@@ -32,10 +33,10 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         for k in 0..D {
             let delta = S::state_sub(self.target[slot][k].widen(), t[k].widen());
             let x = S::state_add(self.offset[slot][k], delta);
-            let u = self.start.shifted(self.step_velocity[slot][k], delta);
+            let u = start.shifted(self.step_velocity[slot][k], delta);
             moved |= x != self.offset[slot][k];
-            self.offset[slot][k] = self.start.clamp(x);
-            self.step_velocity[slot][k] = self.start.clamp(u);
+            self.offset[slot][k] = start.clamp(x);
+            self.step_velocity[slot][k] = start.clamp(u);
         }
         self.target[slot] = t;
         if moved {
@@ -64,17 +65,14 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// ```
     pub fn try_set_target(&mut self, index: BatchIndex, target: [S; D]) -> Result<(), Error> {
         let slot = self.live_slot(index)?;
+        let start = self.tuned(slot).start;
         let mut x = self.offset[slot];
         let mut u = self.step_velocity[slot];
         for k in 0..D {
             check_position(target[k], Parameter::Position)?;
             let delta = S::state_sub(self.target[slot][k].widen(), target[k].widen());
-            x[k] = self
-                .start
-                .check(S::state_add(x[k], delta), Parameter::Position)?;
-            u[k] = self
-                .start
-                .check(self.start.shifted(u[k], delta), Parameter::StepVelocity)?;
+            x[k] = start.check(S::state_add(x[k], delta), Parameter::Position)?;
+            u[k] = start.check(start.shifted(u[k], delta), Parameter::StepVelocity)?;
         }
         let moved = x != self.offset[slot];
         self.offset[slot] = x;
@@ -102,6 +100,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         let Some(slot) = self.slot(index) else {
             return;
         };
+        let start = self.tuned(slot).start;
         let mut p = position;
         for v in p.iter_mut() {
             match saturate(*v) {
@@ -114,9 +113,9 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             let to = S::state_sub(p[k].widen(), self.target[slot][k].widen());
             let delta = S::state_sub(to, self.offset[slot][k]);
             moved |= delta != S::STATE_ZERO;
-            let u = self.start.shifted(self.step_velocity[slot][k], delta);
-            self.offset[slot][k] = self.start.clamp(to);
-            self.step_velocity[slot][k] = self.start.clamp(u);
+            let u = start.shifted(self.step_velocity[slot][k], delta);
+            self.offset[slot][k] = start.clamp(to);
+            self.step_velocity[slot][k] = start.clamp(u);
         }
         if moved {
             self.wake(slot);
@@ -139,14 +138,13 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
         let Some(slot) = self.slot(index) else {
             return;
         };
+        let start = self.tuned(slot).start;
         let mut u = self.step_velocity[slot];
         for k in 0..D {
             let Some(v) = saturate(velocity[k]) else {
                 return;
             };
-            u[k] = self
-                .start
-                .clamp(self.start.step_velocity_unchecked(self.offset[slot][k], v));
+            u[k] = start.clamp(start.step_velocity_unchecked(self.offset[slot][k], v));
         }
         self.step_velocity[slot] = u;
         self.wake(slot);
@@ -168,10 +166,11 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// ```
     pub fn try_fling(&mut self, index: BatchIndex, velocity: [S; D]) -> Result<(), Error> {
         let slot = self.live_slot(index)?;
+        let start = self.tuned(slot).start;
         let mut u = self.step_velocity[slot];
         for k in 0..D {
             let v = check_position(velocity[k], Parameter::Velocity)?;
-            u[k] = self.start.step_velocity(self.offset[slot][k], v)?;
+            u[k] = start.step_velocity(self.offset[slot][k], v)?;
         }
         self.step_velocity[slot] = u;
         self.wake(slot);

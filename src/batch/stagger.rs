@@ -149,7 +149,7 @@ impl<S: Scalar, const D: usize, const N: usize> Stagger<S, D, N> {
     /// One frame: hands the targets due now to `batch` (a stale index is ignored, as
     /// [`SpringBatch::set_target`] ignores it), counts the others down, then steps the
     /// batch and returns what it reports.
-    pub fn step(&mut self, batch: &mut SpringBatch<S, D, N>) -> BatchMotion {
+    pub fn step<const T: usize>(&mut self, batch: &mut SpringBatch<S, D, N, T>) -> BatchMotion {
         if self.pending > 0 {
             for entry in self.due.iter_mut() {
                 match entry {

@@ -1,6 +1,6 @@
 //! The hot loop of a batch, and what a step reports.
 
-use super::{BatchIndex, BatchMotion, SpringBatch};
+use super::{BatchIndex, BatchMotion, SpringBatch, Tuned};
 use crate::scalar::Scalar;
 
 /// Whether the target steps a batch several values at a time (SIMD), which a branch per
@@ -13,7 +13,7 @@ const VECTOR_UNITS: bool = cfg!(any(
     target_arch = "wasm32"
 ));
 
-impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
+impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D, N, T> {
     /// Advances every awake value by one time step, settles those whose motion left is
     /// inside the rest band (every [`with_rest_check_every`](Self::with_rest_check_every)
     /// steps), and reports what moved.
@@ -46,11 +46,13 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
                 settled: 0,
             };
         }
-        let gains = self.gains;
-        let band = self.band;
-        if awake == self.len {
+        if T > 1 {
+            // Values of several tunings: each steps with its own, through the awake list.
+            self.step_each_tuned();
+        } else if awake == self.len {
             // Everything live is awake: one straight pass over the used slots. Removed
             // slots hold a zero state, which a step leaves at zero.
+            let (gains, band) = (self.tunings[0].gains, self.tunings[0].band);
             let used = self.used;
             let (offsets, velocities) = (&mut self.offset[..used], &mut self.step_velocity[..used]);
             let live = &self.live[..used];
@@ -100,6 +102,7 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
                 }
             }
         } else {
+            let (gains, band) = (self.tunings[0].gains, self.tunings[0].band);
             for &slot in self.awake.iter() {
                 let slot = slot as usize;
                 let (x, u) = (&mut self.offset[slot], &mut self.step_velocity[slot]);
@@ -146,7 +149,21 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     }
 
     fn advance_awake(&mut self) {
-        let gains = self.gains;
+        if T > 1 {
+            for &slot in self.awake.iter() {
+                let slot = slot as usize;
+                let gains = self.tuned(slot).gains;
+                for k in 0..D {
+                    S::advance(
+                        &gains,
+                        &mut self.offset[slot][k],
+                        &mut self.step_velocity[slot][k],
+                    );
+                }
+            }
+            return;
+        }
+        let gains = self.tunings[0].gains;
         if self.awake.len() == self.len {
             let used = self.used;
             for (x, u) in self.offset[..used]
@@ -167,6 +184,24 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
                         &mut self.step_velocity[slot][k],
                     );
                 }
+            }
+        }
+    }
+
+    /// The rest-testing step of a batch with several tunings: each awake value with its
+    /// own tuning's gains and rest band.
+    fn step_each_tuned(&mut self) {
+        for &slot in self.awake.iter() {
+            let slot = slot as usize;
+            let Tuned { gains, band, .. } = *self.tuned(slot);
+            let (x, u) = (&mut self.offset[slot], &mut self.step_velocity[slot]);
+            for k in 0..D {
+                S::advance(&gains, &mut x[k], &mut u[k]);
+            }
+            if (0..D).all(|k| band.contains(x[k], u[k])) {
+                *x = [S::STATE_ZERO; D];
+                *u = [S::STATE_ZERO; D];
+                let _ = self.settled.push(slot as u16);
             }
         }
     }

@@ -45,7 +45,10 @@ impl<S: Scalar, const D: usize, const N: usize> Trail<S, D, N> {
     /// assert_eq!(Trail::new(&b, [a, c]).len(), 2);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn new(batch: &SpringBatch<S, D, N>, order: impl IntoIterator<Item = BatchIndex>) -> Self {
+    pub fn new<const T: usize>(
+        batch: &SpringBatch<S, D, N, T>,
+        order: impl IntoIterator<Item = BatchIndex>,
+    ) -> Self {
         let mut chain: Vec<(BatchIndex, [S; D]), N> = Vec::new();
         let mut before: Option<[S; D]> = None;
         for index in order {
@@ -103,7 +106,7 @@ impl<S: Scalar, const D: usize, const N: usize> Trail<S, D, N> {
     /// assert_eq!((b.target(a), b.target(c)), (Some([1.0]), Some([5.0])));
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn set_target(&self, batch: &mut SpringBatch<S, D, N>, target: [S; D]) {
+    pub fn set_target<const T: usize>(&self, batch: &mut SpringBatch<S, D, N, T>, target: [S; D]) {
         if let Some(&(leader, _)) = self.chain.first() {
             batch.set_target(leader, target);
         }
@@ -125,7 +128,7 @@ impl<S: Scalar, const D: usize, const N: usize> Trail<S, D, N> {
     /// assert!(b.position(c).unwrap()[0] > 5.0);
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
-    pub fn step(&mut self, batch: &mut SpringBatch<S, D, N>) -> BatchMotion {
+    pub fn step<const T: usize>(&mut self, batch: &mut SpringBatch<S, D, N, T>) -> BatchMotion {
         let mut before: Option<[S; D]> = None;
         for &(index, spacing) in self.chain.iter() {
             let position = batch.position(index);
