@@ -12,7 +12,7 @@
 
 use crate::Tally;
 use crate::golden::knob_menu as golden;
-use stiffspring::KnobConfig;
+use stiffspring::{Knob, KnobConfig, Scalar, Scroll};
 
 /// The knob's control rate, Hz: 20 periods per 60 Hz frame.
 pub const RATE: f64 = 1_200.0;
@@ -50,21 +50,24 @@ pub const CONFIG: KnobConfig = KnobConfig::new(RATE, INERTIA, LIMIT, 16_384)
 
 /// Where the hand pushes the knob at time `t` (s), and whether it touches it.
 pub fn hand_target(t: f64) -> Option<f64> {
-    // Straight lines between (time, angle) points: up through every item in 1.8 s and
-    // 0.35 rad into the upper stop; from the last item down three and a half; from the
-    // fourth item 0.35 rad past the lower stop. The times are nudged off the 60 Hz grid
+    // Straight lines between (time, angle) points: up through every item and 0.35 rad
+    // into the upper stop; from the last item down three and a half; from the fourth item
+    // 0.35 rad past the lower stop. The times are nudged off the 60 Hz grid
     // (by 2.5 ms, 5 ms and −5 ms) so that no detent click falls on a frame's first or last
     // period, where another backend's click a period apart would land in another frame
     // (`tests/knob_menu_golden.rs` checks it).
     let ramp = |t: f64, t0: f64, t1: f64, a0: f64, a1: f64| a0 + (a1 - a0) * (t - t0) / (t1 - t0);
+    const UP: f64 = 0.3025; // s: the turn up, for 2 s
+    const DOWN: f64 = 3.305; // the turn down three items, for 0.4 s
+    const LOW: f64 = 4.195; // the turn into the lower stop, for 0.4 s
     match t {
-        t if t < 0.3025 => None,
-        t if t < 2.3025 => Some(ramp(t, 0.3025, 2.3025, 0.0, RANGE + 0.35)),
+        t if t < UP => None,
+        t if t < UP + 2.0 => Some(ramp(t, UP, UP + 2.0, 0.0, RANGE + 0.35)),
         t if t < 2.8 => Some(RANGE + 0.35),
-        t if t < 3.305 => None,
-        t if t < 3.705 => Some(ramp(t, 3.305, 3.705, RANGE, RANGE - 3.5 * WIDTH)),
-        t if t < 4.195 => None,
-        t if t < 4.595 => Some(ramp(t, 4.195, 4.595, 4.0 * WIDTH, -0.35)),
+        t if t < DOWN => None,
+        t if t < DOWN + 0.4 => Some(ramp(t, DOWN, DOWN + 0.4, RANGE, RANGE - 3.5 * WIDTH)),
+        t if t < LOW => None,
+        t if t < LOW + 0.4 => Some(ramp(t, LOW, LOW + 0.4, 4.0 * WIDTH, -0.35)),
         t if t < 4.9 => Some(-0.35),
         _ => None,
     }
@@ -142,6 +145,8 @@ pub struct Check {
     pub item_mismatches: usize,
     /// Frames whose resting point is not the item's offset.
     pub unsynced: usize,
+    /// Whether everything [`Check::require`] was given held.
+    pub required: bool,
     frame: usize,
 }
 
@@ -158,28 +163,38 @@ impl Check {
             offsets: Tally::new(),
             item_mismatches: 0,
             unsynced: 0,
+            required: true,
             frame: 0,
         }
     }
 
-    /// The next frame: its `item`, the menu's `offset` and its resting point `to`.
-    pub fn frame(&mut self, item: i32, offset: f64, to: f64) {
+    /// The next frame: the item is the `knob`'s detent, the `menu` rests on its offset
+    /// and is where the golden run is.
+    pub fn frame<S: Scalar>(&mut self, knob: &Knob<S>, menu: &Scroll<S>) {
         let [items, offsets] = golden::RUN;
-        let k = self.frame;
+        let (k, item) = (self.frame, knob.detent());
         self.frame += 1;
         if k >= items.len() || f64::from(item) != items[k] {
             self.item_mismatches += 1;
         }
-        if to != f64::from(item) * f64::from(ROW) {
+        if menu.resting_point().to_f64() != f64::from(item) * f64::from(ROW) {
             self.unsynced += 1;
         }
         let golden = offsets.get(k).copied().unwrap_or(f64::NAN);
+        let offset = menu.position().to_f64();
         self.offsets.check(k, offset, golden, OFFSET_TOLERANCE);
+    }
+
+    /// Fails the run unless `ok`: what the example needs besides the frames (on the
+    /// host, that it wrote its GIF).
+    pub fn require(&mut self, ok: bool) {
+        self.required &= ok;
     }
 
     /// True when every frame of the scene was checked and matched.
     pub fn passed(&self) -> bool {
         self.frame == FRAMES
+            && self.required
             && self.offsets.passed()
             && self.item_mismatches == 0
             && self.unsynced == 0
