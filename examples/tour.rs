@@ -4,8 +4,8 @@
 //! cargo run --release --example tour
 //! ```
 //!
-//! Plays the five starters (`examples/card.rs`, `list.rs`, `scroll.rs`, `rope.rs`,
-//! `knob_loop.rs`),
+//! Plays the six starters (`examples/card.rs`, `list.rs`, `scroll.rs`, `rope.rs`,
+//! `knob_loop.rs`, `knob_menu.rs`),
 //! whose frames go to animated GIFs in `target/tour/`, then prints compact tables (steps
 //! to rest, error against the independent f64 reference model of the article and
 //! against the analytic solution, run time against the peer crates) and writes SVG plots
@@ -17,6 +17,8 @@
 
 mod card;
 mod knob_loop;
+// The tour calls its `run` (its `main`, from `firmware::main!`, is the example's own).
+mod knob_menu;
 mod list;
 mod rope;
 mod scroll;
@@ -48,13 +50,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         dir.display()
     );
     println!(
-        "The starters (examples/card.rs, list.rs, scroll.rs, rope.rs, knob_loop.rs), as they print:"
+        "The starters (examples/card.rs, list.rs, scroll.rs, rope.rs, knob_loop.rs, knob_menu.rs), as they print:"
     );
     card::main()?;
     list::main()?;
     scroll::main()?;
     rope::main()?;
     knob_loop::main()?;
+    if !knob_menu::run() {
+        return Err("knob_menu: the run differs from its golden values".into());
+    }
     println!();
     values::presets(&dir);
     values::fling(&dir);

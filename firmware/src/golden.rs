@@ -2,5 +2,6 @@
 //! (`STIFFSPRING_BLESS=1 cargo test --test golden`); do not edit them by hand.
 
 pub mod knob;
+pub mod knob_menu;
 pub mod rope;
 pub mod value;

@@ -3,6 +3,7 @@
 //! writes their golden values into [`crate::golden`].
 
 pub mod knob;
+pub mod knob_menu;
 pub mod rope;
 pub mod value;
 
