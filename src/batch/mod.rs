@@ -12,6 +12,7 @@ use crate::rest::{RestBand, RestThreshold};
 use crate::scalar::Scalar;
 use crate::start::Start;
 use crate::tuning::Tuning;
+use core::mem::MaybeUninit;
 use heapless::Vec;
 
 mod index;
@@ -89,9 +90,48 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn new(tuning: &Tuning) -> Result<Self, Error> {
+        let (gains, start) = (gains_of::<S>(tuning)?, Start::new(tuning)?);
+        Ok(Self::with_parts(gains, start, tuning))
+    }
+
+    /// [`SpringBatch::new`], built in `slot` instead of returned: for storage its owner
+    /// keeps (the C API's). A batch is large (about 700 bytes for 16 `f32` values), and
+    /// moving one out of a `Result` into such storage copies all of it (a `memcpy` that
+    /// the C API's `init` paid for); built in place, its arrays are cleared where they
+    /// lie. `slot` is written only when this returns `Ok`, and then whole: on an error it
+    /// is as it was.
+    ///
+    /// # Errors
+    ///
+    /// As [`SpringBatch::new`].
+    ///
+    /// ```
+    /// use core::mem::MaybeUninit;
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut slot = MaybeUninit::uninit();
+    /// let batch = SpringBatch::<f32, 1, 16>::new_in(&mut slot, &Tuning::rigid(0.01)?)?;
+    /// assert!(batch.is_empty());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn new_in<'a>(
+        slot: &'a mut MaybeUninit<Self>,
+        tuning: &Tuning,
+    ) -> Result<&'a mut Self, Error> {
+        // Every check first, so that nothing is written on an error.
+        let (gains, start) = (gains_of::<S>(tuning)?, Start::new(tuning)?);
+        // The tuning copied out first, so that the batch is built where it lies (its arrays
+        // cleared in place): copied inside the literal, it made LLVM build the literal on
+        // the stack and copy it into `slot` (376 bytes, a `memcpy`).
+        let tuning = *tuning;
+        Ok(slot.write(Self::with_parts(gains, start, &tuning)))
+    }
+
+    /// An empty batch from the parts of `tuning` that [`SpringBatch::new`] checks.
+    #[inline(always)]
+    fn with_parts(gains: S::Gains, start: Start<S>, tuning: &Tuning) -> Self {
         const { assert!(N <= u16::MAX as usize) };
         let threshold = RestThreshold::default();
-        Ok(SpringBatch {
+        SpringBatch {
             offset: [[S::STATE_ZERO; D]; N],
             step_velocity: [[S::STATE_ZERO; D]; N],
             target: [[S::ZERO; D]; N],
@@ -102,14 +142,14 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
             settled: Vec::new(),
             used: 0,
             len: 0,
-            gains: gains_of::<S>(tuning)?,
+            gains,
             band: RestBand::new(&threshold, tuning),
-            start: Start::new(tuning)?,
+            start,
             threshold,
             tuning: *tuning,
             check_every: 1,
             until_check: 0,
-        })
+        }
     }
 
     /// The same batch with another rest threshold.
