@@ -90,8 +90,30 @@ impl<S: Scalar, const D: usize, const N: usize> SpringBatch<S, D, N> {
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn new(tuning: &Tuning) -> Result<Self, Error> {
-        let (gains, start) = (gains_of::<S>(tuning)?, Start::new(tuning)?);
-        Ok(Self::with_parts(gains, start, tuning))
+        const { assert!(N <= u16::MAX as usize) };
+        let threshold = RestThreshold::default();
+        // The batch's literal as `with_parts` has it, with the checks inside: so written
+        // (rather than through `with_parts`), the Rust firmwares keep their code (through
+        // `with_parts`, the Rust twin of the C API's batch firmware was 40 bytes larger).
+        Ok(SpringBatch {
+            offset: [[S::STATE_ZERO; D]; N],
+            step_velocity: [[S::STATE_ZERO; D]; N],
+            target: [[S::ZERO; D]; N],
+            generation: [0; N],
+            live: [false; N],
+            is_awake: [false; N],
+            awake: Vec::new(),
+            settled: Vec::new(),
+            used: 0,
+            len: 0,
+            gains: gains_of::<S>(tuning)?,
+            band: RestBand::new(&threshold, tuning),
+            start: Start::new(tuning)?,
+            threshold,
+            tuning: *tuning,
+            check_every: 1,
+            until_check: 0,
+        })
     }
 
     /// [`SpringBatch::new`], built in `slot` instead of returned: for storage its owner
