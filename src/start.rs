@@ -45,6 +45,10 @@ impl<S: Scalar> Start<S> {
     ///
     /// [`Error::Unrepresentable`] when the tuning's transient growth leaves floats no room
     /// for the positions they accept.
+    ///
+    /// `#[inline]`, as `gains_of`: so that a caller that keeps only the error's kind does
+    /// not build the rest of it.
+    #[inline]
     pub(crate) fn new(tuning: &Tuning) -> Result<Self, Error> {
         let (p, q) = tuning.start_weights();
         let limit = if S::RESOLUTION > 0.0 {

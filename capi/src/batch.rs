@@ -69,9 +69,12 @@ pub struct StiffspringBatchMotion {
     pub settled: u32,
 }
 
-/// The batch and the names of its values.
-struct Batch<S: Scalar> {
-    batch: SpringBatch<S, 1, N>,
+/// The batch and, beside it, the names of its values: built in place ([`init`]).
+type Batch<S> = handle::Pair<SpringBatch<S, 1, N>, Names>;
+
+/// The names of a batch's values, which the C layer keeps beside the batch.
+#[derive(Clone, Copy)]
+struct Names {
     /// The Rust index of each slot's live value.
     live: [Option<BatchIndex>; N],
     /// How many values each slot held before its current one.
@@ -82,56 +85,65 @@ impl<S: Scalar> Batch<S> {
     /// The C index of the value in `index`'s slot.
     fn c_index(&self, index: BatchIndex) -> u32 {
         let slot = index.slot();
-        u32::from(self.generation[slot]) << 16 | slot as u32
+        u32::from(self.extra.generation[slot]) << 16 | slot as u32
     }
 
     /// The Rust index a C index names, if it names a live value.
     fn index(&self, c: u32) -> Result<BatchIndex, StiffspringError> {
         let slot = (c & 0xffff) as usize;
-        match self.live.get(slot) {
-            Some(Some(index)) if u32::from(self.generation[slot]) == c >> 16 => Ok(*index),
+        match self.extra.live.get(slot) {
+            Some(Some(index)) if u32::from(self.extra.generation[slot]) == c >> 16 => Ok(*index),
             _ => Err(StiffspringError::StaleIndex),
         }
     }
 
     fn push(&mut self, position: S) -> Result<u32, StiffspringError> {
-        let index = self.batch.push([position])?;
-        self.live[index.slot()] = Some(index);
+        let index = self.object.push([position])?;
+        self.extra.live[index.slot()] = Some(index);
         Ok(self.c_index(index))
     }
 
     fn remove(&mut self, c: u32) -> Result<S, StiffspringError> {
         let index = self.index(c)?;
         let position = self
-            .batch
+            .object
             .remove(index)
             .ok_or(StiffspringError::StaleIndex)?;
         let slot = index.slot();
-        self.live[slot] = None;
-        self.generation[slot] = self.generation[slot].wrapping_add(1);
+        self.extra.live[slot] = None;
+        self.extra.generation[slot] = self.extra.generation[slot].wrapping_add(1);
         Ok(position[0])
     }
 }
 
+/// Builds the batch in `storage` itself (`SpringBatch::new_in`): returned and moved there,
+/// it cost a `memcpy` of the whole batch, and the `memcpy`.
+///
 /// # Safety
 ///
-/// As [`handle::init`] and [`handle::get_ref`].
+/// As [`handle::init_in_place`] and [`handle::get_ref`].
 unsafe fn init<S: Scalar>(
     storage: *mut u8,
     size: usize,
     tag: Tag,
     tuning: *const StiffspringTuning,
 ) -> StiffspringError {
-    // SAFETY: the caller's contract.
+    // SAFETY: the caller's contract; `SpringBatch::new_in` writes its slot only when it
+    // returns `Ok` (its documentation), as `init_in_place` asks of `make`.
     code(unsafe {
-        handle::init(storage, size, tag, || {
-            let tuning = tuning::read(tuning)?;
-            Ok(Batch::<S> {
-                batch: SpringBatch::new(tuning)?,
+        handle::init_in_place(
+            storage,
+            size,
+            tag,
+            |slot| {
+                let tuning = tuning::read(tuning)?;
+                Ok(SpringBatch::<S, 1, N>::new_in(slot, tuning)?)
+            },
+            Names {
                 live: [None; N],
                 generation: [0; N],
-            })
-        })
+            },
+        )
     })
 }
 
@@ -180,7 +192,7 @@ unsafe fn step<S: Scalar>(
     // SAFETY: the caller's contract.
     unsafe {
         with::<S>(storage, tag, |b| {
-            let m = b.batch.step();
+            let m = b.object.step();
             let m = StiffspringBatchMotion {
                 moving: count(m.moving),
                 settled: count(m.settled),
@@ -204,7 +216,7 @@ unsafe fn just_settled<S: Scalar>(
     unsafe {
         with_ref::<S>(storage, tag, |b| {
             let mut n = 0;
-            for index in b.batch.just_settled() {
+            for index in b.object.just_settled() {
                 if n < capacity {
                     // `n < capacity`: within the caller's array.
                     handle::write_out(indices.wrapping_add(n), b.c_index(index))?;
@@ -332,7 +344,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_set_target(
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
             let i = b.index(index)?;
-            b.batch.set_target(i, [target]);
+            b.object.set_target(i, [target]);
             Ok(())
         })
     }
@@ -357,7 +369,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_try_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            Ok(b.batch.try_set_target(b.index(index)?, [target])?)
+            Ok(b.object.try_set_target(b.index(index)?, [target])?)
         })
     }
 }
@@ -382,7 +394,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_set_position(
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
             let i = b.index(index)?;
-            b.batch.set_position(i, [position]);
+            b.object.set_position(i, [position]);
             Ok(())
         })
     }
@@ -408,7 +420,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_fling(
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
             let i = b.index(index)?;
-            b.batch.fling(i, [velocity]);
+            b.object.fling(i, [velocity]);
             Ok(())
         })
     }
@@ -477,7 +489,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_position(
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
             let p = b
-                .batch
+                .object
                 .position(b.index(index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, p[0])
@@ -505,7 +517,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_is_at_rest(
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
             let r = b
-                .batch
+                .object
                 .is_at_rest(b.index(index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, r)
@@ -533,8 +545,8 @@ pub unsafe extern "C" fn stiffspring_batch_f32_counts(
     // SAFETY: this function's contract.
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
-            handle::write_optional(len, count(b.batch.len()))?;
-            handle::write_optional(awake, count(b.batch.awake()))
+            handle::write_optional(len, count(b.object.len()))?;
+            handle::write_optional(awake, count(b.object.awake()))
         })
     }
 }
@@ -655,7 +667,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_set_target(
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let i = b.index(index)?;
-            b.batch.set_target(i, [q16::from_bits(target)]);
+            b.object.set_target(i, [q16::from_bits(target)]);
             Ok(())
         })
     }
@@ -680,7 +692,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_try_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            Ok(b.batch
+            Ok(b.object
                 .try_set_target(b.index(index)?, [q16::from_bits(target)])?)
         })
     }
@@ -706,7 +718,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_set_position(
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let i = b.index(index)?;
-            b.batch.set_position(i, [q16::from_bits(position)]);
+            b.object.set_position(i, [q16::from_bits(position)]);
             Ok(())
         })
     }
@@ -732,7 +744,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_fling(
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let i = b.index(index)?;
-            b.batch.fling(i, [q16::from_bits(velocity)]);
+            b.object.fling(i, [q16::from_bits(velocity)]);
             Ok(())
         })
     }
@@ -801,7 +813,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_position(
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let p = b
-                .batch
+                .object
                 .position(b.index(index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, q16::to_bits(p[0]))
@@ -829,7 +841,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_is_at_rest(
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let r = b
-                .batch
+                .object
                 .is_at_rest(b.index(index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, r)
@@ -857,8 +869,8 @@ pub unsafe extern "C" fn stiffspring_batch_q16_counts(
     // SAFETY: this function's contract.
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            handle::write_optional(len, count(b.batch.len()))?;
-            handle::write_optional(awake, count(b.batch.awake()))
+            handle::write_optional(len, count(b.object.len()))?;
+            handle::write_optional(awake, count(b.object.awake()))
         })
     }
 }

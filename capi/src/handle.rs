@@ -102,6 +102,63 @@ pub unsafe fn init<T>(
     Ok(())
 }
 
+/// A library object and the C layer's own data beside it, in one storage: a batch and the
+/// names of its values. The object is built in place by [`init_in_place`].
+#[repr(C)]
+pub struct Pair<A, B> {
+    /// The library's object.
+    pub object: A,
+    /// What the C layer keeps beside it.
+    pub extra: B,
+}
+
+/// [`init`] for an object too large to move: `make` builds the library's object in the
+/// storage itself (as `SpringBatch::new_in` does) instead of returning it, so that no copy
+/// of it is made (the copy was a `memcpy` of the whole batch, and the `memcpy` itself,
+/// in a C firmware's flash); `extra` is written beside it. The tag becomes live last.
+///
+/// # Safety
+///
+/// As [`init`]; and `make` writes its slot only when it returns `Ok` (as the library's
+/// in-place constructors do), so that on an error the storage, and an object that may
+/// live there, are as they were.
+pub unsafe fn init_in_place<A, B>(
+    storage: *mut u8,
+    size: usize,
+    tag: Tag,
+    make: impl FnOnce(&mut MaybeUninit<A>) -> Result<&mut A, StiffspringError>,
+    extra: B,
+) -> Result<(), StiffspringError> {
+    check_pointer::<Pair<A, B>>(storage)?;
+    if size < size_of::<Slot<Pair<A, B>>>() {
+        return Err(StiffspringError::BufferTooSmall);
+    }
+    let slot = storage.cast::<Slot<Pair<A, B>>>();
+    // SAFETY: `storage` is non-null, aligned for the slot and `size` bytes long (checked
+    // above, and the contract), and nothing else uses it (the contract): the object's
+    // field is in bounds, and a `&mut MaybeUninit<A>` to it asks nothing of its bytes
+    // (`MaybeUninit<A>` has `A`'s layout).
+    let object = unsafe { &mut *(&raw mut (*slot).object.object).cast::<MaybeUninit<A>>() };
+    let expected: *const A = object.as_ptr();
+    // `make` writes nothing when it fails (the contract), so `?` leaves the storage as it was.
+    let built: *const A = make(object)?;
+    if !core::ptr::eq(built, expected) {
+        // An object built elsewhere: the slot's bytes are not known to be one, so the
+        // storage holds none now (this does not happen with the library's constructors).
+        // SAFETY: the tag is in bounds of the storage, which is ours (as above).
+        unsafe { (&raw mut (*slot).tag).write(0) };
+        return Err(StiffspringError::Other);
+    }
+    // SAFETY: in bounds and ours (as above); `write` drops nothing of the old bytes. With
+    // the `A` that `make` returned, a reference to the slot's own object, the pair is
+    // whole, and the tag says so last.
+    unsafe {
+        (&raw mut (*slot).object.extra).write(extra);
+        (&raw mut (*slot).tag).write(tag.live());
+    }
+    Ok(())
+}
+
 /// Whether a live `T` is in `storage`, by its tag.
 ///
 /// # Safety

@@ -11,6 +11,7 @@ use crate::input::check_position;
 use crate::rest::{RestBand, RestThreshold};
 use crate::scalar::Scalar;
 use crate::tuning::Tuning;
+use core::mem::MaybeUninit;
 use heapless::Vec;
 
 mod index;
@@ -107,6 +108,9 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
         const { assert!(T >= 1 && T <= u8::MAX as usize) };
         let threshold = RestThreshold::default();
         let tuned = Tuned::new(tuning, &threshold)?;
+        // The batch's literal as `with_parts` has it, with the checks inside: so written
+        // (rather than through `with_parts`), the Rust firmwares keep their code (through
+        // `with_parts`, the Rust twin of the C API's batch firmware was 40 bytes larger).
         Ok(SpringBatch {
             offset: [[S::STATE_ZERO; D]; N],
             step_velocity: [[S::STATE_ZERO; D]; N],
@@ -128,6 +132,66 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
             check_every: 1,
             until_check: 0,
         })
+    }
+
+    /// [`SpringBatch::new`], built in `slot` instead of returned: for storage its owner
+    /// keeps (the C API's). A batch is large (about 800 bytes for 16 `f32` values), and
+    /// moving one out of a `Result` into such storage copies all of it (a `memcpy` that
+    /// the C API's `init` paid for); built in place, its arrays are cleared where they
+    /// lie. `slot` is written only when this returns `Ok`, and then whole: on an error it
+    /// is as it was.
+    ///
+    /// # Errors
+    ///
+    /// As [`SpringBatch::new`].
+    ///
+    /// ```
+    /// use core::mem::MaybeUninit;
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut slot = MaybeUninit::uninit();
+    /// let batch = SpringBatch::<f32, 1, 16>::new_in(&mut slot, &Tuning::rigid(0.01)?)?;
+    /// assert!(batch.is_empty());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn new_in<'a>(
+        slot: &'a mut MaybeUninit<Self>,
+        tuning: &Tuning,
+    ) -> Result<&'a mut Self, Error> {
+        // Every check first, so that nothing is written on an error. The tuning's parts
+        // are built before the literal, so that the batch is built where it lies (its
+        // arrays cleared in place): copied inside the literal, the tuning made LLVM build
+        // the literal on the stack and copy it into `slot` (376 bytes, a `memcpy`).
+        let threshold = RestThreshold::default();
+        let tuned = Tuned::new(tuning, &threshold)?;
+        Ok(slot.write(Self::with_parts(tuned, threshold)))
+    }
+
+    /// An empty batch of the one tuning `tuned`, which [`SpringBatch::new`] checks.
+    #[inline(always)]
+    fn with_parts(tuned: Tuned<S>, threshold: RestThreshold) -> Self {
+        const { assert!(N <= u16::MAX as usize) };
+        const { assert!(T >= 1 && T <= u8::MAX as usize) };
+        SpringBatch {
+            offset: [[S::STATE_ZERO; D]; N],
+            step_velocity: [[S::STATE_ZERO; D]; N],
+            target: [[S::ZERO; D]; N],
+            generation: [0; N],
+            live: [false; N],
+            is_awake: [false; N],
+            awake: Vec::new(),
+            settled: Vec::new(),
+            reported: [[S::ZERO; D]; N],
+            unreported: Vec::new(),
+            is_unreported: [false; N],
+            used: 0,
+            len: 0,
+            tunings: [tuned; T],
+            tuning_count: 1,
+            tuning_of: [0; N],
+            threshold,
+            check_every: 1,
+            until_check: 0,
+        }
     }
 
     /// The same batch with another rest threshold.
