@@ -23,8 +23,9 @@ use stiffspring::scene::{
 };
 use stiffspring::{
     BatchIndex, BatchMotion, Bound, Bounds, Decay, Error, Friction, I16F16, I32F32, Knob,
-    KnobConfig, KnobOutput, Motion, Oscillator, Parameter, Remedy, RestThreshold, RubberBand,
-    Scroll, ScrollPhase, Snap, SpringBatch, SpringValue, Stagger, Trail, Tuning,
+    KnobConfig, KnobOutput, Motion, Moved, Oscillator, Parameter, Remedy, RestThreshold,
+    RubberBand, Scroll, ScrollPhase, Snap, SpringBatch, SpringValue, Stagger, Trail, Tuning,
+    TuningSlot,
 };
 
 /// Compiles only for `T: defmt::Format`.
@@ -60,6 +61,9 @@ const _: () = {
     is_format::<SpringBatch<I16F16, 1, 4>>();
     is_format::<BatchIndex>();
     is_format::<Stagger<f32, 2, 4>>();
+    is_format::<Moved<f32, 2>>();
+    is_format::<TuningSlot>();
+    is_format::<SpringBatch<I16F16, 1, 4, 3>>();
     is_format::<Trail<I16F16, 1, 4>>();
     is_format::<BatchMotion>();
     is_format::<Motion>();
