@@ -108,30 +108,7 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
         const { assert!(T >= 1 && T <= u8::MAX as usize) };
         let threshold = RestThreshold::default();
         let tuned = Tuned::new(tuning, &threshold)?;
-        // The batch's literal as `with_parts` has it, with the checks inside: so written
-        // (rather than through `with_parts`), the Rust firmwares keep their code (through
-        // `with_parts`, the Rust twin of the C API's batch firmware was 40 bytes larger).
-        Ok(SpringBatch {
-            offset: [[S::STATE_ZERO; D]; N],
-            step_velocity: [[S::STATE_ZERO; D]; N],
-            target: [[S::ZERO; D]; N],
-            generation: [0; N],
-            live: [false; N],
-            is_awake: [false; N],
-            awake: Vec::new(),
-            settled: Vec::new(),
-            reported: [[S::ZERO; D]; N],
-            unreported: Vec::new(),
-            is_unreported: [false; N],
-            used: 0,
-            len: 0,
-            tunings: [tuned; T],
-            tuning_count: 1,
-            tuning_of: [0; N],
-            threshold,
-            check_every: 1,
-            until_check: 0,
-        })
+        Ok(Self::with_parts(tuned, threshold))
     }
 
     /// [`SpringBatch::new`], built in `slot` instead of returned: for storage its owner
