@@ -21,13 +21,13 @@
 #define STIFFSPRING_BATCH_CAPACITY 16
 
 // 64-bit words of a [`StiffspringBatchF32`].
-#define STIFFSPRING_BATCH_F32_WORDS 113
+#define STIFFSPRING_BATCH_F32_WORDS 81
 
 // Bytes of a [`StiffspringBatchF32`], for a buffer of one's own.
 #define STIFFSPRING_BATCH_F32_SIZE (STIFFSPRING_BATCH_F32_WORDS * 8)
 
 // 64-bit words of a [`StiffspringBatchQ16`].
-#define STIFFSPRING_BATCH_Q16_WORDS 141
+#define STIFFSPRING_BATCH_Q16_WORDS 109
 
 // Bytes of a [`StiffspringBatchQ16`].
 #define STIFFSPRING_BATCH_Q16_SIZE (STIFFSPRING_BATCH_Q16_WORDS * 8)

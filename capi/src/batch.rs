@@ -4,7 +4,7 @@
 //! A value of the batch is named by a `uint32_t` index: its slot in the low 16 bits and, in
 //! the high 16, a count of the values that slot held before, so that the index of a removed
 //! value never names the value that took its slot (it is `STALE_INDEX`, as the Rust API's
-//! `BatchIndex`). The batch keeps the Rust `BatchIndex` of each slot beside it.
+//! `BatchIndex`). It is the Rust `BatchIndex` itself, as `BatchIndex::to_bits` gives it.
 
 use crate::error::{StiffspringError, code};
 use crate::handle::{self, Tag};
@@ -17,11 +17,11 @@ use stiffspring::{BatchIndex, I16F16, Scalar, SpringBatch};
 pub const STIFFSPRING_BATCH_CAPACITY: usize = 16;
 
 /// 64-bit words of a [`StiffspringBatchF32`].
-pub const STIFFSPRING_BATCH_F32_WORDS: usize = 113;
+pub const STIFFSPRING_BATCH_F32_WORDS: usize = 81;
 /// Bytes of a [`StiffspringBatchF32`], for a buffer of one's own.
 pub const STIFFSPRING_BATCH_F32_SIZE: usize = STIFFSPRING_BATCH_F32_WORDS * 8;
 /// 64-bit words of a [`StiffspringBatchQ16`].
-pub const STIFFSPRING_BATCH_Q16_WORDS: usize = 141;
+pub const STIFFSPRING_BATCH_Q16_WORDS: usize = 109;
 /// Bytes of a [`StiffspringBatchQ16`].
 pub const STIFFSPRING_BATCH_Q16_SIZE: usize = STIFFSPRING_BATCH_Q16_WORDS * 8;
 
@@ -69,51 +69,25 @@ pub struct StiffspringBatchMotion {
     pub settled: u32,
 }
 
-/// The batch and, beside it, the names of its values: built in place ([`init`]).
-type Batch<S> = handle::Pair<SpringBatch<S, 1, N>, Names>;
+/// The batch, built in place ([`init`]).
+type Batch<S> = SpringBatch<S, 1, N>;
 
-/// The names of a batch's values, which the C layer keeps beside the batch.
-#[derive(Clone, Copy)]
-struct Names {
-    /// The Rust index of each slot's live value.
-    live: [Option<BatchIndex>; N],
-    /// How many values each slot held before its current one.
-    generation: [u16; N],
+/// The Rust index a C index names, if it names a live value of `batch`.
+fn live<S: Scalar>(batch: &Batch<S>, c: u32) -> Result<BatchIndex, StiffspringError> {
+    let index = BatchIndex::from_bits(c);
+    if batch.contains(index) {
+        Ok(index)
+    } else {
+        Err(StiffspringError::StaleIndex)
+    }
 }
 
-impl<S: Scalar> Batch<S> {
-    /// The C index of the value in `index`'s slot.
-    fn c_index(&self, index: BatchIndex) -> u32 {
-        let slot = index.slot();
-        u32::from(self.extra.generation[slot]) << 16 | slot as u32
-    }
-
-    /// The Rust index a C index names, if it names a live value.
-    fn index(&self, c: u32) -> Result<BatchIndex, StiffspringError> {
-        let slot = (c & 0xffff) as usize;
-        match self.extra.live.get(slot) {
-            Some(Some(index)) if u32::from(self.extra.generation[slot]) == c >> 16 => Ok(*index),
-            _ => Err(StiffspringError::StaleIndex),
-        }
-    }
-
-    fn push(&mut self, position: S) -> Result<u32, StiffspringError> {
-        let index = self.object.push([position])?;
-        self.extra.live[index.slot()] = Some(index);
-        Ok(self.c_index(index))
-    }
-
-    fn remove(&mut self, c: u32) -> Result<S, StiffspringError> {
-        let index = self.index(c)?;
-        let position = self
-            .object
-            .remove(index)
-            .ok_or(StiffspringError::StaleIndex)?;
-        let slot = index.slot();
-        self.extra.live[slot] = None;
-        self.extra.generation[slot] = self.extra.generation[slot].wrapping_add(1);
-        Ok(position[0])
-    }
+/// Removes the value a C index names; its position.
+fn remove<S: Scalar>(batch: &mut Batch<S>, c: u32) -> Result<S, StiffspringError> {
+    let [position] = batch
+        .remove(BatchIndex::from_bits(c))
+        .ok_or(StiffspringError::StaleIndex)?;
+    Ok(position)
 }
 
 /// Builds the batch in `storage` itself (`SpringBatch::new_in`): returned and moved there,
@@ -131,19 +105,10 @@ unsafe fn init<S: Scalar>(
     // SAFETY: the caller's contract; `SpringBatch::new_in` writes its slot only when it
     // returns `Ok` (its documentation), as `init_in_place` asks of `make`.
     code(unsafe {
-        handle::init_in_place(
-            storage,
-            size,
-            tag,
-            |slot| {
-                let tuning = tuning::read(tuning)?;
-                Ok(SpringBatch::<S, 1, N>::new_in(slot, tuning)?)
-            },
-            Names {
-                live: [None; N],
-                generation: [0; N],
-            },
-        )
+        handle::init_in_place(storage, size, tag, |slot| {
+            let tuning = tuning::read(tuning)?;
+            Ok(SpringBatch::<S, 1, N>::new_in(slot, tuning)?)
+        })
     })
 }
 
@@ -192,7 +157,7 @@ unsafe fn step<S: Scalar>(
     // SAFETY: the caller's contract.
     unsafe {
         with::<S>(storage, tag, |b| {
-            let m = b.object.step();
+            let m = b.step();
             let m = StiffspringBatchMotion {
                 moving: count(m.moving),
                 settled: count(m.settled),
@@ -216,10 +181,10 @@ unsafe fn just_settled<S: Scalar>(
     unsafe {
         with_ref::<S>(storage, tag, |b| {
             let mut n = 0;
-            for index in b.object.just_settled() {
+            for index in b.just_settled() {
                 if n < capacity {
                     // `n < capacity`: within the caller's array.
-                    handle::write_out(indices.wrapping_add(n), b.c_index(index))?;
+                    handle::write_out(indices.wrapping_add(n), index.to_bits())?;
                     n += 1;
                 }
             }
@@ -296,7 +261,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_push(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            handle::write_out(index, b.push(position)?)
+            handle::write_out(index, b.push([position])?.to_bits())
         })
     }
 }
@@ -319,7 +284,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_remove(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            handle::write_optional(position, b.remove(index)?)
+            handle::write_optional(position, remove(b, index)?)
         })
     }
 }
@@ -343,8 +308,8 @@ pub unsafe extern "C" fn stiffspring_batch_f32_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            let i = b.index(index)?;
-            b.object.set_target(i, [target]);
+            let i = live(b, index)?;
+            b.set_target(i, [target]);
             Ok(())
         })
     }
@@ -369,7 +334,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_try_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            Ok(b.object.try_set_target(b.index(index)?, [target])?)
+            Ok(b.try_set_target(live(b, index)?, [target])?)
         })
     }
 }
@@ -393,8 +358,8 @@ pub unsafe extern "C" fn stiffspring_batch_f32_set_position(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            let i = b.index(index)?;
-            b.object.set_position(i, [position]);
+            let i = live(b, index)?;
+            b.set_position(i, [position]);
             Ok(())
         })
     }
@@ -419,8 +384,8 @@ pub unsafe extern "C" fn stiffspring_batch_f32_fling(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            let i = b.index(index)?;
-            b.object.fling(i, [velocity]);
+            let i = live(b, index)?;
+            b.fling(i, [velocity]);
             Ok(())
         })
     }
@@ -489,8 +454,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_position(
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
             let p = b
-                .object
-                .position(b.index(index)?)
+                .position(live(b, index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, p[0])
         })
@@ -517,8 +481,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_is_at_rest(
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
             let r = b
-                .object
-                .is_at_rest(b.index(index)?)
+                .is_at_rest(live(b, index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, r)
         })
@@ -545,8 +508,8 @@ pub unsafe extern "C" fn stiffspring_batch_f32_counts(
     // SAFETY: this function's contract.
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
-            handle::write_optional(len, count(b.object.len()))?;
-            handle::write_optional(awake, count(b.object.awake()))
+            handle::write_optional(len, count(b.len()))?;
+            handle::write_optional(awake, count(b.awake()))
         })
     }
 }
@@ -619,7 +582,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_push(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            handle::write_out(index, b.push(q16::from_bits(position))?)
+            handle::write_out(index, b.push([q16::from_bits(position)])?.to_bits())
         })
     }
 }
@@ -642,7 +605,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_remove(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            handle::write_optional(position, q16::to_bits(b.remove(index)?))
+            handle::write_optional(position, q16::to_bits(remove(b, index)?))
         })
     }
 }
@@ -666,8 +629,8 @@ pub unsafe extern "C" fn stiffspring_batch_q16_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            let i = b.index(index)?;
-            b.object.set_target(i, [q16::from_bits(target)]);
+            let i = live(b, index)?;
+            b.set_target(i, [q16::from_bits(target)]);
             Ok(())
         })
     }
@@ -692,8 +655,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_try_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            Ok(b.object
-                .try_set_target(b.index(index)?, [q16::from_bits(target)])?)
+            Ok(b.try_set_target(live(b, index)?, [q16::from_bits(target)])?)
         })
     }
 }
@@ -717,8 +679,8 @@ pub unsafe extern "C" fn stiffspring_batch_q16_set_position(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            let i = b.index(index)?;
-            b.object.set_position(i, [q16::from_bits(position)]);
+            let i = live(b, index)?;
+            b.set_position(i, [q16::from_bits(position)]);
             Ok(())
         })
     }
@@ -743,8 +705,8 @@ pub unsafe extern "C" fn stiffspring_batch_q16_fling(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            let i = b.index(index)?;
-            b.object.fling(i, [q16::from_bits(velocity)]);
+            let i = live(b, index)?;
+            b.fling(i, [q16::from_bits(velocity)]);
             Ok(())
         })
     }
@@ -813,8 +775,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_position(
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let p = b
-                .object
-                .position(b.index(index)?)
+                .position(live(b, index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, q16::to_bits(p[0]))
         })
@@ -841,8 +802,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_is_at_rest(
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let r = b
-                .object
-                .is_at_rest(b.index(index)?)
+                .is_at_rest(live(b, index)?)
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, r)
         })
@@ -869,8 +829,8 @@ pub unsafe extern "C" fn stiffspring_batch_q16_counts(
     // SAFETY: this function's contract.
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            handle::write_optional(len, count(b.object.len()))?;
-            handle::write_optional(awake, count(b.object.awake()))
+            handle::write_optional(len, count(b.len()))?;
+            handle::write_optional(awake, count(b.awake()))
         })
     }
 }

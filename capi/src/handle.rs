@@ -102,46 +102,35 @@ pub unsafe fn init<T>(
     Ok(())
 }
 
-/// A library object and the C layer's own data beside it, in one storage: a batch and the
-/// names of its values. The object is built in place by [`init_in_place`].
-#[repr(C)]
-pub struct Pair<A, B> {
-    /// The library's object.
-    pub object: A,
-    /// What the C layer keeps beside it.
-    pub extra: B,
-}
-
 /// [`init`] for an object too large to move: `make` builds the library's object in the
 /// storage itself (as `SpringBatch::new_in` does) instead of returning it, so that no copy
 /// of it is made (the copy was a `memcpy` of the whole batch, and the `memcpy` itself,
-/// in a C firmware's flash); `extra` is written beside it. The tag becomes live last.
+/// in a C firmware's flash). The tag becomes live last.
 ///
 /// # Safety
 ///
 /// As [`init`]; and `make` writes its slot only when it returns `Ok` (as the library's
 /// in-place constructors do), so that on an error the storage, and an object that may
 /// live there, are as they were.
-pub unsafe fn init_in_place<A, B>(
+pub unsafe fn init_in_place<T>(
     storage: *mut u8,
     size: usize,
     tag: Tag,
-    make: impl FnOnce(&mut MaybeUninit<A>) -> Result<&mut A, StiffspringError>,
-    extra: B,
+    make: impl FnOnce(&mut MaybeUninit<T>) -> Result<&mut T, StiffspringError>,
 ) -> Result<(), StiffspringError> {
-    check_pointer::<Pair<A, B>>(storage)?;
-    if size < size_of::<Slot<Pair<A, B>>>() {
+    check_pointer::<T>(storage)?;
+    if size < size_of::<Slot<T>>() {
         return Err(StiffspringError::BufferTooSmall);
     }
-    let slot = storage.cast::<Slot<Pair<A, B>>>();
+    let slot = storage.cast::<Slot<T>>();
     // SAFETY: `storage` is non-null, aligned for the slot and `size` bytes long (checked
     // above, and the contract), and nothing else uses it (the contract): the object's
-    // field is in bounds, and a `&mut MaybeUninit<A>` to it asks nothing of its bytes
-    // (`MaybeUninit<A>` has `A`'s layout).
-    let object = unsafe { &mut *(&raw mut (*slot).object.object).cast::<MaybeUninit<A>>() };
-    let expected: *const A = object.as_ptr();
+    // field is in bounds, and a `&mut MaybeUninit<T>` to it asks nothing of its bytes
+    // (`MaybeUninit<T>` has `T`'s layout).
+    let object = unsafe { &mut *(&raw mut (*slot).object).cast::<MaybeUninit<T>>() };
+    let expected: *const T = object.as_ptr();
     // `make` writes nothing when it fails (the contract), so `?` leaves the storage as it was.
-    let built: *const A = make(object)?;
+    let built: *const T = make(object)?;
     if !core::ptr::eq(built, expected) {
         // An object built elsewhere: the slot's bytes are not known to be one, so the
         // storage holds none now (this does not happen with the library's constructors).
@@ -149,13 +138,9 @@ pub unsafe fn init_in_place<A, B>(
         unsafe { (&raw mut (*slot).tag).write(0) };
         return Err(StiffspringError::Other);
     }
-    // SAFETY: in bounds and ours (as above); `write` drops nothing of the old bytes. With
-    // the `A` that `make` returned, a reference to the slot's own object, the pair is
-    // whole, and the tag says so last.
-    unsafe {
-        (&raw mut (*slot).object.extra).write(extra);
-        (&raw mut (*slot).tag).write(tag.live());
-    }
+    // SAFETY: in bounds and ours (as above). With the `T` that `make` returned, a
+    // reference to the slot's own object, the slot is whole, and the tag says so last.
+    unsafe { (&raw mut (*slot).tag).write(tag.live()) };
     Ok(())
 }
 

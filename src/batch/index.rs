@@ -3,6 +3,11 @@
 /// A value of a [`SpringBatch`](super::SpringBatch): a slot and the generation of the value in it, so that an
 /// index of a removed value never names the value that took its slot.
 ///
+/// The generation is 16 bits: an index kept across 65,536 removals from its slot names
+/// the slot's value again. An index is one `u32` ([`BatchIndex::to_bits`]), so that a
+/// caller can keep it where only an integer fits, a C handle or a UI widget's tag, and get
+/// it back with [`BatchIndex::from_bits`].
+///
 /// ```
 /// use stiffspring::{SpringBatch, Tuning};
 ///
@@ -20,7 +25,7 @@
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct BatchIndex {
     pub(super) slot: u16,
-    pub(super) generation: u32,
+    pub(super) generation: u16,
 }
 
 impl BatchIndex {
@@ -34,6 +39,41 @@ impl BatchIndex {
     /// ```
     pub const fn slot(self) -> usize {
         self.slot as usize
+    }
+
+    /// The index as one integer: the slot in the low 16 bits, the generation in the high 16.
+    ///
+    /// ```
+    /// use stiffspring::{BatchIndex, SpringBatch, Tuning};
+    /// let mut batch = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?;
+    /// let a = batch.push([0.0])?;
+    /// batch.remove(a);
+    /// let b = batch.push([1.0])?;
+    /// assert_eq!(b.to_bits(), 1 << 16); // slot 0, its second value
+    /// assert_eq!(BatchIndex::from_bits(b.to_bits()), b);
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn to_bits(self) -> u32 {
+        (self.generation as u32) << 16 | self.slot as u32
+    }
+
+    /// The index whose [`BatchIndex::to_bits`] is `bits`. Every `u32` is an index; one that
+    /// no batch gave names no value, and the batch treats it as stale (as
+    /// [`SpringBatch::contains`](super::SpringBatch::contains) tells).
+    ///
+    /// ```
+    /// use stiffspring::{BatchIndex, SpringBatch, Tuning};
+    /// let mut batch = SpringBatch::<f32, 1, 4>::new(&Tuning::rigid(0.01)?)?;
+    /// let a = batch.push([2.0])?;
+    /// assert_eq!(batch.position(BatchIndex::from_bits(a.to_bits())), Some([2.0]));
+    /// assert!(!batch.contains(BatchIndex::from_bits(u32::MAX)));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub const fn from_bits(bits: u32) -> BatchIndex {
+        BatchIndex {
+            slot: bits as u16,
+            generation: (bits >> 16) as u16,
+        }
     }
 }
 

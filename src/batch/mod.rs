@@ -60,7 +60,7 @@ pub struct SpringBatch<S: Scalar, const D: usize, const N: usize, const T: usize
     offset: [[S::State; D]; N],
     step_velocity: [[S::State; D]; N],
     target: [[S; D]; N],
-    generation: [u32; N],
+    generation: [u16; N],
     live: [bool; N],
     is_awake: [bool; N],
     /// The slots of the awake values, in no order.
@@ -326,6 +326,22 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
         (0..self.used)
             .filter(|&s| self.live[s])
             .map(|s| (self.index_of(s), self.position_of(s)))
+    }
+
+    /// Whether `index` names a live value of this batch: false for a removed value's index
+    /// and for one no push gave. The setters ignore an index for which this is false.
+    ///
+    /// ```
+    /// use stiffspring::{SpringBatch, Tuning};
+    /// let mut b = SpringBatch::<f32, 1, 2>::new(&Tuning::rigid(0.01)?)?;
+    /// let i = b.push([1.0])?;
+    /// assert!(b.contains(i));
+    /// b.remove(i);
+    /// assert!(!b.contains(i));
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn contains(&self, index: BatchIndex) -> bool {
+        self.slot(index).is_some()
     }
 
     /// A value's position, or `None` for a stale index.
