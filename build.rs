@@ -24,7 +24,8 @@ fn main() {
          \"value_f32_raw_runtime\", \"value_f32_exact_const\", \"value_f32_exact_runtime\", \
          \"value_i16f16_raw\", \"batch16_f32\", \"rope_f32\", \"knob_f32\", \
          \"knob_f32_const\", \"knob_i16f16_const\", \"everything\", \
-         \"c_twin_value\", \"c_twin_batch\", \"c_twin_knob\"))"
+         \"c_twin_value\", \"c_twin_batch\", \"c_twin_knob\", \"c_twin_value_q16\", \
+         \"c_twin_batch_q16\", \"c_twin_knob_q16\"))"
     );
 
     // ARMv6-M (Cortex-M0/M0+/M1) and ARMv8-M Baseline (M23) multiply 32×32 → 32 bits

@@ -16,7 +16,7 @@
 //! | `knob_f32_const` | the same knob designed at compile time (`knob!`), started with `Knob::from_design` |
 //! | `knob_i16f16_const` | the same in `I16F16`, designed at compile time |
 //! | `everything` | all of the above in one firmware |
-//! | `c_twin_value`, `c_twin_batch`, `c_twin_knob` | the Rust twins of the C API's size firmwares (`capi/c/m4f/size.c`, `scripts/capi-size`): the same calls with every object kept in memory between them, as a C caller's storage keeps it, so that the difference is the C layer's own |
+//! | `c_twin_value`, `c_twin_batch`, `c_twin_knob`, and `c_twin_value_q16`, `c_twin_batch_q16`, `c_twin_knob_q16` in `I16F16` | the Rust twins of the C API's size firmwares (`capi/c/m4f/size.c`, `scripts/capi-size`): the same calls with every object kept in memory between them, as a C caller's storage keeps it, so that the difference is the C layer's own |
 //!
 //! Every input that is not meant to be a constant goes through `black_box`, so that the
 //! optimiser cannot fold a scene into constants. The panic handler does not format its
@@ -69,11 +69,17 @@ fn configured() {
     #[cfg(any(size = "knob_i16f16_const", size = "everything"))]
     knob_i16f16_const();
     #[cfg(size = "c_twin_value")]
-    c_twin::value();
+    c_twin::value::<f32>();
     #[cfg(size = "c_twin_batch")]
-    c_twin::batch();
+    c_twin::batch::<f32>();
     #[cfg(size = "c_twin_knob")]
-    c_twin::knob();
+    c_twin::knob::<f32>();
+    #[cfg(size = "c_twin_value_q16")]
+    c_twin::value::<stiffspring::I16F16>();
+    #[cfg(size = "c_twin_batch_q16")]
+    c_twin::batch::<stiffspring::I16F16>();
+    #[cfg(size = "c_twin_knob_q16")]
+    c_twin::knob::<stiffspring::I16F16>();
     black_box(());
 }
 
@@ -86,36 +92,61 @@ fn configured() {
 #[allow(dead_code)]
 mod c_twin {
     use core::hint::black_box;
-    use stiffspring::{Knob, SpringBatch, SpringValue, Tuning};
+    use stiffspring::{I16F16, Knob, Scalar, SpringBatch, SpringValue, Tuning};
+
+    /// The numbers a C firmware passes: `float`s, or Q16.16 `int32_t`s that the C API takes
+    /// as the bits of an `I16F16` (no conversion in either).
+    pub trait Input: Scalar {
+        /// `x`, as the C firmware writes it (`10 * i` for a batch's targets, say).
+        fn input(x: i32) -> Self;
+        /// The encoder angle of period `n`, about 1e−3 rad a period.
+        fn angle(n: i32) -> Self;
+    }
+    impl Input for f32 {
+        fn input(x: i32) -> f32 {
+            x as f32
+        }
+        fn angle(n: i32) -> f32 {
+            n as f32 * 1e-3
+        }
+    }
+    impl Input for I16F16 {
+        fn input(x: i32) -> I16F16 {
+            I16F16::from_bits(x << 16)
+        }
+        fn angle(n: i32) -> I16F16 {
+            I16F16::from_bits(n * 66)
+        }
+    }
 
     fn tuning() -> Option<Tuning> {
         let t = Tuning::from_frequency(black_box(2.0), black_box(0.7), black_box(1.0 / 60.0));
         t.ok().map(black_box)
     }
 
-    pub fn value() {
+    pub fn value<S: Input>() {
         let Some(t) = tuning() else { return };
-        let Ok(v) = SpringValue::<f32, 1>::new([black_box(0.0)], &t) else {
+        let Ok(v) = SpringValue::<S, 1>::new([black_box(S::input(0))], &t) else {
             return;
         };
         let mut v = black_box(v);
-        v.set_target([black_box(100.0)]);
+        v.set_target([black_box(S::input(100))]);
         for _ in 0..black_box(60) {
             let _ = black_box(v.step());
         }
         black_box(v.position());
     }
 
-    pub fn batch() {
+    pub fn batch<S: Input>() {
         let Some(t) = tuning() else { return };
-        let Ok(b) = SpringBatch::<f32, 1, 16>::new(&t) else {
+        let Ok(b) = SpringBatch::<S, 1, 16>::new(&t) else {
             return;
         };
         let mut b = black_box(b);
         let mut last = None;
         for i in 0..16 {
-            if let Ok(k) = b.push([black_box(0.0)]) {
-                b.set_target(k, [10.0 * i as f32]);
+            if let Ok(k) = b.push([black_box(S::input(0))]) {
+                b.set_target(k, [S::input(10 * i)]);
                 last = Some(k);
             }
         }
@@ -127,15 +158,15 @@ mod c_twin {
         }
     }
 
-    pub fn knob() {
+    pub fn knob<S: Input>() {
         let config = super::run_time_knob_config();
         let config = black_box(config);
-        let Ok(knob) = Knob::<f32>::new(&config, black_box(0.0)) else {
+        let Ok(knob) = Knob::<S>::new(&config, black_box(S::input(0))) else {
             return;
         };
         let mut knob = black_box(knob);
         for n in 0..black_box(1000) {
-            let out = knob.update(n as f32 * 1e-3);
+            let out = knob.update(S::angle(n));
             black_box(out.torque);
         }
     }

@@ -9,17 +9,35 @@
  *                            a batch, retargeted, stepped 60 times, one read
  *   SIZE_KNOB                knob_f32: an f32 knob with 16 detents between endstops, set
  *                            up at run time, updated 1000 times
+ *   SIZE_Q16                 with any of the above: the same in Q16.16 (the _q16_
+ *                            functions, int32_t numbers)
  *
  * Inputs go through volatile variables (the C counterpart of black_box). The Rust twins
- * are the c_twin_* configurations of examples/size.rs. */
+ * are the c_twin_* configurations of examples/size.rs (c_twin_*_q16 for SIZE_Q16). */
 #include <stdint.h>
 
 #include "stiffspring.h"
 
-static volatile float sink_f;
+/* The backend: its functions' infix, its number type, a number from an integer (as the
+ * Rust twin's `Input::input`), and the knob's encoder angle of period n. */
+#ifdef SIZE_Q16
+#define API(object, name) stiffspring_##object##_q16_##name
+#define STORAGE(object) Stiffspring##object##Q16
+typedef int32_t number;
+#define NUMBER(x) ((int32_t)(x) * 65536)
+#define ANGLE(n) ((int32_t)(n) * 66)
+#else
+#define API(object, name) stiffspring_##object##_f32_##name
+#define STORAGE(object) Stiffspring##object##F32
+typedef float number;
+#define NUMBER(x) ((float)(x))
+#define ANGLE(n) ((float)(n) * 1e-3f)
+#endif
+
+static volatile number sink_x;
 static volatile int sink_i;
 static volatile double in_frequency = 2.0, in_zeta = 0.7, in_dt = 1.0 / 60.0;
-static volatile float in_zero = 0.0f, in_target = 100.0f;
+static volatile number in_zero = NUMBER(0), in_target = NUMBER(100);
 static volatile int in_frames = 60;
 
 #if defined(SIZE_VALUE) || defined(SIZE_BATCH)
@@ -33,38 +51,38 @@ static int make_tuning(void) {
 
 #ifdef SIZE_VALUE
 static void value(void) {
-    static StiffspringValueF32 v;
+    static STORAGE(Value) v;
     if (!make_tuning()) return;
-    if (stiffspring_value_f32_init(&v, sizeof v, &tuning, in_zero) != STIFFSPRING_ERROR_OK) return;
-    stiffspring_value_f32_set_target(&v, in_target);
+    if (API(value, init)(&v, sizeof v, &tuning, in_zero) != STIFFSPRING_ERROR_OK) return;
+    API(value, set_target)(&v, in_target);
     for (int i = 0; i < in_frames; i++) {
         StiffspringMotion m;
-        stiffspring_value_f32_step(&v, &m);
+        API(value, step)(&v, &m);
         sink_i = m;
     }
-    float x;
-    stiffspring_value_f32_position(&v, &x);
-    sink_f = x;
+    number x;
+    API(value, position)(&v, &x);
+    sink_x = x;
 }
 #endif
 
 #ifdef SIZE_BATCH
 static void batch(void) {
-    static StiffspringBatchF32 b;
+    static STORAGE(Batch) b;
     uint32_t last = 0;
-    if (!make_tuning() || stiffspring_batch_f32_init(&b, sizeof b, &tuning) != STIFFSPRING_ERROR_OK) return;
+    if (!make_tuning() || API(batch, init)(&b, sizeof b, &tuning) != STIFFSPRING_ERROR_OK) return;
     for (int i = 0; i < 16; i++) {
-        if (stiffspring_batch_f32_push(&b, in_zero, &last) == STIFFSPRING_ERROR_OK)
-            stiffspring_batch_f32_set_target(&b, last, 10.0f * (float)i);
+        if (API(batch, push)(&b, in_zero, &last) == STIFFSPRING_ERROR_OK)
+            API(batch, set_target)(&b, last, NUMBER(10 * i));
     }
     for (int i = 0; i < in_frames; i++) {
         StiffspringBatchMotion m;
-        stiffspring_batch_f32_step(&b, &m);
+        API(batch, step)(&b, &m);
         sink_i = (int)m.moving;
     }
-    float x;
-    stiffspring_batch_f32_position(&b, last, &x);
-    sink_f = x;
+    number x;
+    API(batch, position)(&b, last, &x);
+    sink_x = x;
 }
 #endif
 
@@ -75,16 +93,20 @@ static volatile int in_periods = 1000;
 
 static void knob(void) {
     static StiffspringKnobConfig c;
-    static StiffspringKnobF32 k;
+    static STORAGE(Knob) k;
     stiffspring_knob_config_init(&c, sizeof c, in_rate, in_inertia, in_limit, in_counts);
     stiffspring_knob_config_endstops(&c, 0.0, in_max);
     stiffspring_knob_config_detent_count(&c, in_detents);
     stiffspring_knob_config_detent_stiffness(&c, in_k);
-    if (stiffspring_knob_f32_init(&k, sizeof k, &c, in_zero) != STIFFSPRING_ERROR_OK) return;
+    if (API(knob, init)(&k, sizeof k, &c, in_zero) != STIFFSPRING_ERROR_OK) return;
     for (int n = 0; n < in_periods; n++) {
+#ifdef SIZE_Q16
+        StiffspringKnobOutputQ16 out;
+#else
         StiffspringKnobOutputF32 out;
-        stiffspring_knob_f32_update(&k, (float)n * 1e-3f, &out);
-        sink_f = out.torque;
+#endif
+        API(knob, update)(&k, ANGLE(n), &out);
+        sink_x = out.torque;
     }
 }
 #endif
