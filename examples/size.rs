@@ -296,7 +296,9 @@ const KNOB: stiffspring::KnobConfig = stiffspring::KnobConfig::new(1_000.0, 1e-5
 #[allow(dead_code)]
 fn knob_f32_const() {
     use stiffspring::Knob;
-    let Ok(mut knob) = Knob::from_design(&stiffspring::knob!(KNOB, f32), black_box(0.0)) else {
+    let mut slot = core::mem::MaybeUninit::uninit();
+    let design = stiffspring::knob!(KNOB, f32);
+    let Ok(knob) = Knob::from_design_in(&mut slot, &design, black_box(0.0)) else {
         return;
     };
     for n in 0..black_box(1000) {
@@ -310,8 +312,9 @@ fn knob_f32_const() {
 #[allow(dead_code)]
 fn knob_i16f16_const() {
     use stiffspring::{I16F16, Knob};
+    let mut slot = core::mem::MaybeUninit::uninit();
     let design = stiffspring::knob!(KNOB, I16F16);
-    let Ok(mut knob) = Knob::from_design(&design, black_box(I16F16::ZERO)) else {
+    let Ok(knob) = Knob::from_design_in(&mut slot, &design, black_box(I16F16::ZERO)) else {
         return;
     };
     for n in 0..black_box(1000) {

@@ -193,3 +193,53 @@ macro_rules! knob {
         DESIGN
     }};
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{I16F16, Knob};
+
+    /// `Knob::loop_coefficients` derives the report from what the knob keeps; it must be
+    /// the design's own, to the bit, in every zone that occurs and in none that does not.
+    #[test]
+    fn a_knobs_loop_report_is_its_designs_to_the_bit() {
+        // The knob of issue 17 (4 kHz, 24 detents between endstops at ±135°), and the docs'.
+        let base = KnobConfig::new(4_000.0, 1e-5, 0.02, 16384).detent_count(24);
+        let docs = KnobConfig::new(1_000.0, 1e-5, 0.05, 16384).detent_stiffness(0.05);
+        let configs = [
+            base.endstops(-2.356, 2.356).detent_torque(0.01),
+            docs.detent_width(0.2),
+            docs.endstops(0.0, 3.0).detent_count(16),
+            docs.detent_width(0.2)
+                .magnets(&[0.0, 1.0])
+                .magnet_stiffness(0.02),
+            docs.endstops(0.0, 3.0)
+                .detent_count(16)
+                .magnets(&[1.0, 2.0])
+                .magnet_stiffness(0.02)
+                .damping_ratio(1.0),
+        ];
+        let mut seen = [false; 3];
+        for (i, config) in configs.iter().enumerate() {
+            let design = KnobDesign::<f32>::new(config);
+            let design = design.unwrap_or_else(|e| panic!("configuration {i}: {e:?}"));
+            let knob = Knob::from_design(&design, 0.0).expect("a good angle");
+            assert_eq!(
+                knob.loop_coefficients(),
+                design.design.zones,
+                "configuration {i}"
+            );
+            for (z, zone) in design.design.zones.iter().enumerate() {
+                seen[z] |= zone.is_some();
+            }
+            let fixed = KnobDesign::<I16F16>::new(config).expect("accepted in I16F16");
+            let knob = Knob::from_design(&fixed, I16F16::ZERO).expect("a good angle");
+            assert_eq!(
+                knob.loop_coefficients(),
+                fixed.design.zones,
+                "configuration {i}"
+            );
+        }
+        assert_eq!(seen, [true; 3], "every zone occurs in some configuration");
+    }
+}

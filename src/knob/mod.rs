@@ -182,6 +182,7 @@ pub use validate::MIN_LOOP_RATE;
 
 use crate::error::Parameter;
 use crate::scalar::Scalar;
+use core::mem::MaybeUninit;
 use detents::{Ladder, Magnets};
 use law::Shape;
 use screen::Mode;
@@ -304,8 +305,14 @@ pub struct Knob<S: Scalar> {
     rest_zone: f64,
     knee: f64,
     max_speed: Option<f64>,
-    loop_coefficients: [Option<LoopCoefficients>; 3],
     zone_stiffness: [f64; 3],
+    // What `loop_coefficients` derives its report from (`LoopCoefficients::of`), in place
+    // of the report itself: 27 bytes instead of 96, and a knob started from a `const`
+    // design copies no array of `f64` out of it (the copy that linked `memcpy`).
+    dt: f64,
+    inertia: f64,
+    filter_alpha: f64,
+    zone_present: [bool; 3],
 }
 
 impl<S: Scalar> Knob<S> {
@@ -388,9 +395,52 @@ impl<S: Scalar> Knob<S> {
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn from_design(design: &KnobDesign<S>, initial_angle: S) -> Result<Self, KnobError> {
-        let v = &design.design;
-        let p = &design.parts;
-        let (lowest, highest) = (p.lowest.get(), p.highest.get());
+        Self::check_start(design, initial_angle)?;
+        let mut knob = Self::from_parts(design, initial_angle);
+        knob.start(initial_angle);
+        Ok(knob)
+    }
+
+    /// [`Knob::from_design`], built in `slot` instead of returned: for a knob kept in
+    /// storage of its own (a `static` through `StaticCell::uninit`, a C caller's buffer).
+    /// A knob is about 500 bytes, and moving one out of a `Result` copies all of it; built
+    /// in place, a firmware whose only knob is started here links no `memcpy` (on the
+    /// Cortex-M4F, `scripts/size-report`'s `knob_f32_const`). `slot` is written only when
+    /// this returns `Ok`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Knob::from_design`].
+    ///
+    /// ```
+    /// use core::mem::MaybeUninit;
+    /// use stiffspring::knob::KnobDesign;
+    /// use stiffspring::{Knob, KnobConfig, knob};
+    ///
+    /// const DESIGN: KnobDesign<f32> = knob!(KnobConfig::new(1_000.0, 1e-5, 0.05, 16384)
+    ///     .endstops(0.0, 3.0)
+    ///     .detent_count(16)
+    ///     .detent_stiffness(0.05));
+    /// let mut slot = MaybeUninit::uninit();
+    /// let knob = Knob::from_design_in(&mut slot, &DESIGN, 1.0)?;
+    /// assert_eq!(knob.detent(), 5);
+    /// assert!(Knob::from_design_in(&mut MaybeUninit::uninit(), &DESIGN, f32::NAN).is_err());
+    /// # Ok::<(), stiffspring::knob::KnobError>(())
+    /// ```
+    pub fn from_design_in<'a>(
+        slot: &'a mut MaybeUninit<Self>,
+        design: &KnobDesign<S>,
+        initial_angle: S,
+    ) -> Result<&'a mut Self, KnobError> {
+        Self::check_start(design, initial_angle)?;
+        let knob = slot.write(Self::from_parts(design, initial_angle));
+        knob.start(initial_angle);
+        Ok(knob)
+    }
+
+    /// Refuses an initial angle the backend cannot hold, or NaN.
+    fn check_start(design: &KnobDesign<S>, initial_angle: S) -> Result<(), KnobError> {
+        let (lowest, highest) = (design.parts.lowest.get(), design.parts.highest.get());
         // Checked in the backend's arithmetic: a NaN fails both comparisons.
         if !(initial_angle >= lowest && initial_angle <= highest) {
             let start = initial_angle.to_f64();
@@ -399,9 +449,19 @@ impl<S: Scalar> Knob<S> {
                 Parameter::Position,
                 Limit::BackendRange,
                 start.abs(),
-                v.reach,
+                design.design.reach,
             ));
         }
+        Ok(())
+    }
+
+    /// The knob of `design` at `initial_angle`, before its detent and states are found
+    /// ([`Self::start`]). Inlined, so that [`Self::from_design_in`] writes it in place.
+    #[inline(always)]
+    fn from_parts(design: &KnobDesign<S>, initial_angle: S) -> Self {
+        let v = &design.design;
+        let p = &design.parts;
+        let (lowest, highest) = (p.lowest.get(), p.highest.get());
         let zone = |z: &parts::ZoneParts<S>| ZoneGains {
             other: z.other.get(),
             shape: Shape {
@@ -412,7 +472,7 @@ impl<S: Scalar> Knob<S> {
             },
         };
         let jolt = p.jolt.get();
-        let mut knob = Knob {
+        Knob {
             lowest,
             highest,
             previous: initial_angle,
@@ -457,13 +517,23 @@ impl<S: Scalar> Knob<S> {
             rest_zone: p.rest_zone,
             knee: p.knee,
             max_speed: v.max_speed,
-            loop_coefficients: v.zones,
             zone_stiffness: v.zone_stiffness,
-        };
-        // The nearest detent to the initial angle, walked to from the set-up's index.
-        knob.ladder.settle(initial_angle);
-        knob.reset(initial_angle);
-        Ok(knob)
+            dt: v.dt,
+            inertia: v.inertia,
+            filter_alpha: v.alpha,
+            zone_present: [
+                v.zones[0].is_some(),
+                v.zones[1].is_some(),
+                v.zones[2].is_some(),
+            ],
+        }
+    }
+
+    /// The nearest detent to the initial angle, walked to from the set-up's index, and
+    /// the knob at rest there.
+    fn start(&mut self, initial_angle: S) {
+        self.ladder.settle(initial_angle);
+        self.reset(initial_angle);
     }
 
     /// Puts the knob at rest at `angle`: the previous angle (so the next velocity is
@@ -1092,6 +1162,19 @@ impl<S: Scalar> Knob<S> {
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn loop_coefficients(&self) -> [Option<LoopCoefficients>; 3] {
-        self.loop_coefficients
+        let mut zones = [None; 3];
+        for (z, zone) in zones.iter_mut().enumerate() {
+            if self.zone_present[z] {
+                let (k, b) = (self.zone_stiffness[z], self.damping);
+                *zone = Some(LoopCoefficients::of(
+                    k,
+                    b,
+                    self.filter_alpha,
+                    self.dt,
+                    self.inertia,
+                ));
+            }
+        }
+        zones
     }
 }

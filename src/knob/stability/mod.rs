@@ -204,6 +204,18 @@ pub struct LoopCoefficients {
 }
 
 impl LoopCoefficients {
+    /// The loop of stiffness `k` (N·m/rad) and damping `b` (N·m·s/rad) with the filter
+    /// `alpha`, on inertia `inertia` (kg·m²) stepped every `dt` (s): `C_k = k·dt²/J`,
+    /// `C_d = b·dt/J`. The set-up and [`Knob::loop_coefficients`](crate::Knob::loop_coefficients)
+    /// both compute it here, so that the two agree to the bit.
+    pub(crate) const fn of(k: f64, b: f64, alpha: f64, dt: f64, inertia: f64) -> Self {
+        LoopCoefficients {
+            stiffness: k * dt * dt / inertia,
+            damping: b * dt / inertia,
+            filter: alpha,
+        }
+    }
+
     /// The loop with the inertia divided by `g` (both gains times `g`).
     const fn scaled(self, g: f64) -> Self {
         LoopCoefficients {
@@ -441,11 +453,7 @@ pub(crate) struct Plant {
 impl Plant {
     /// The coefficients of a zone of stiffness `k` with the filter `alpha`.
     pub(crate) const fn coefficients(&self, k: f64, alpha: f64) -> LoopCoefficients {
-        LoopCoefficients {
-            stiffness: k * self.dt * self.dt / self.inertia,
-            damping: self.damping * self.dt / self.inertia,
-            filter: alpha,
-        }
+        LoopCoefficients::of(k, self.damping, alpha, self.dt, self.inertia)
     }
 
     /// `α` for the filter constant `c` over the frequency `omega`, at least
