@@ -358,6 +358,47 @@ pub(crate) struct Magnets<S: Scalar> {
     release: S,
     nearest: usize,
     captured: bool,
+    tracker: Tracker<S>,
+}
+
+/// What [`Magnets::update`] calls: [`Magnets::track`] when there are magnets, nothing
+/// when there are none. A pointer rather than a test of the count, so that a firmware
+/// whose knob is designed without magnets at compile time never names `track`, and the
+/// linker drops it (736 bytes on the Cortex-M4F, `scripts/size-report`'s
+/// `knob_f32_const`): the set-up's constant count folds the pointer to `None`.
+#[derive(Clone, Copy)]
+struct Tracker<S: Scalar>(Option<Track<S>>);
+
+/// [`Magnets::track`]'s type.
+type Track<S> = fn(&mut Magnets<S>, S) -> MagnetUpdate<S>;
+
+/// What a magnets' update returns: the extension from the capturing magnet's centre,
+/// whether the rotor is captured, and the magnet that captured it in this period.
+type MagnetUpdate<S> = (S, bool, Option<u8>);
+
+impl<S: Scalar> PartialEq for Tracker<S> {
+    /// Two trackers are equal when both track or neither does: the pointer is
+    /// `Magnets::track` whenever it is set, so its address says nothing more.
+    fn eq(&self, other: &Self) -> bool {
+        self.0.is_some() == other.0.is_some()
+    }
+}
+
+impl<S: Scalar> core::fmt::Debug for Tracker<S> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(if self.0.is_some() { "Tracking" } else { "None" })
+    }
+}
+
+#[cfg(feature = "defmt")]
+impl<S: Scalar> defmt::Format for Tracker<S> {
+    fn format(&self, f: defmt::Formatter<'_>) {
+        defmt::write!(
+            f,
+            "{=str}",
+            if self.0.is_some() { "Tracking" } else { "None" }
+        )
+    }
 }
 
 /// [`Magnets`] computed by the set-up, as the backend's bits ([`LadderParts`]).
@@ -405,9 +446,13 @@ impl<S: Scalar> MagnetParts<S> {
 }
 
 impl<S: Scalar> Magnets<S> {
-    /// The magnets the set-up computed.
+    /// The magnets the set-up computed. Inlined, so that a constant count of zero leaves
+    /// no reference to [`Self::track`] (see [`Tracker`]).
+    #[inline(always)]
     pub(crate) fn from_parts(p: &MagnetParts<S>) -> Self {
+        let track: Track<S> = Self::track;
         Magnets {
+            tracker: Tracker(if p.count > 0 { Some(track) } else { None }),
             centres: p.centres.map(Raw::get),
             midpoints: p.midpoints.map(Raw::get),
             count: p.count,
@@ -422,17 +467,17 @@ impl<S: Scalar> Magnets<S> {
     /// `angle − centre` of the capturing magnet (zero when free), whether the rotor is
     /// captured, and the magnet that captured it this period, if any.
     #[inline(always)]
-    pub(crate) fn update(&mut self, angle: S) -> (S, bool, Option<u8>) {
+    pub(crate) fn update(&mut self, angle: S) -> MagnetUpdate<S> {
         // Inlined: a knob without magnets pays a test, not a call.
-        if self.count == 0 {
-            return (S::ZERO, false, None);
+        match self.tracker.0 {
+            Some(track) => track(self, angle),
+            None => (S::ZERO, false, None),
         }
-        self.track(angle)
     }
 
     /// [`Self::update`] with magnets, out of line.
     #[inline(never)]
-    fn track(&mut self, angle: S) -> (S, bool, Option<u8>) {
+    fn track(&mut self, angle: S) -> MagnetUpdate<S> {
         let before = self.nearest;
         // At most `count` moves in total: the midpoints are sorted.
         for _ in 0..MAX_MAGNETS {
