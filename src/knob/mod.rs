@@ -517,7 +517,15 @@ impl<S: Scalar> Knob<S> {
             rest_zone: p.rest_zone,
             knee: p.knee,
             max_speed: v.max_speed,
-            zone_stiffness: v.zone_stiffness,
+            // Element by element: each load from a `const` design folds to an immediate,
+            // where the copy of the array was one block copy out of the design, the last
+            // use that kept the whole design constant in flash (1 KB of `knob_f32_const`
+            // on the Cortex-M4F, `scripts/size-report`).
+            zone_stiffness: [
+                v.zone_stiffness[0],
+                v.zone_stiffness[1],
+                v.zone_stiffness[2],
+            ],
             dt: v.dt,
             inertia: v.inertia,
             filter_alpha: v.alpha,
