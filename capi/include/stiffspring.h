@@ -36,13 +36,13 @@
 #define STIFFSPRING_STORAGE_ALIGN 8
 
 // 64-bit words of a [`StiffspringKnobF32`].
-#define STIFFSPRING_KNOB_F32_WORDS 61
+#define STIFFSPRING_KNOB_F32_WORDS 60
 
 // Bytes of a [`StiffspringKnobF32`], for a buffer of one's own.
 #define STIFFSPRING_KNOB_F32_SIZE (STIFFSPRING_KNOB_F32_WORDS * 8)
 
 // 64-bit words of a [`StiffspringKnobQ16`].
-#define STIFFSPRING_KNOB_Q16_WORDS 61
+#define STIFFSPRING_KNOB_Q16_WORDS 60
 
 // Bytes of a [`StiffspringKnobQ16`].
 #define STIFFSPRING_KNOB_Q16_SIZE (STIFFSPRING_KNOB_Q16_WORDS * 8)

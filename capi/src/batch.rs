@@ -72,7 +72,8 @@ pub struct StiffspringBatchMotion {
 /// The batch, built in place ([`init`]).
 type Batch<S> = SpringBatch<S, 1, N>;
 
-/// The Rust index a C index names, if it names a live value of `batch`.
+/// The Rust index a C index names, if it names a live value of `batch`: for the setters,
+/// which ignore a stale index (the getters and `try_set_target` report one themselves).
 fn live<S: Scalar>(batch: &Batch<S>, c: u32) -> Result<BatchIndex, StiffspringError> {
     let index = BatchIndex::from_bits(c);
     if batch.contains(index) {
@@ -334,7 +335,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_try_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<f32>(batch.cast(), TAG_F32, |b| {
-            Ok(b.try_set_target(live(b, index)?, [target])?)
+            Ok(b.try_set_target(BatchIndex::from_bits(index), [target])?)
         })
     }
 }
@@ -454,7 +455,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_position(
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
             let p = b
-                .position(live(b, index)?)
+                .position(BatchIndex::from_bits(index))
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, p[0])
         })
@@ -481,7 +482,7 @@ pub unsafe extern "C" fn stiffspring_batch_f32_is_at_rest(
     unsafe {
         with_ref::<f32>(batch.cast(), TAG_F32, |b| {
             let r = b
-                .is_at_rest(live(b, index)?)
+                .is_at_rest(BatchIndex::from_bits(index))
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, r)
         })
@@ -655,7 +656,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_try_set_target(
     // SAFETY: this function's contract.
     unsafe {
         with::<I16F16>(batch.cast(), TAG_Q16, |b| {
-            Ok(b.try_set_target(live(b, index)?, [q16::from_bits(target)])?)
+            Ok(b.try_set_target(BatchIndex::from_bits(index), [q16::from_bits(target)])?)
         })
     }
 }
@@ -775,7 +776,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_position(
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let p = b
-                .position(live(b, index)?)
+                .position(BatchIndex::from_bits(index))
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, q16::to_bits(p[0]))
         })
@@ -802,7 +803,7 @@ pub unsafe extern "C" fn stiffspring_batch_q16_is_at_rest(
     unsafe {
         with_ref::<I16F16>(batch.cast(), TAG_Q16, |b| {
             let r = b
-                .is_at_rest(live(b, index)?)
+                .is_at_rest(BatchIndex::from_bits(index))
                 .ok_or(StiffspringError::StaleIndex)?;
             handle::write_out(out, r)
         })

@@ -11,11 +11,11 @@ use stiffspring::knob::{Endstop, KnobEvents, SensorFault};
 use stiffspring::{I16F16, Knob, KnobOutput, Scalar};
 
 /// 64-bit words of a [`StiffspringKnobF32`].
-pub const STIFFSPRING_KNOB_F32_WORDS: usize = 61;
+pub const STIFFSPRING_KNOB_F32_WORDS: usize = 60;
 /// Bytes of a [`StiffspringKnobF32`], for a buffer of one's own.
 pub const STIFFSPRING_KNOB_F32_SIZE: usize = STIFFSPRING_KNOB_F32_WORDS * 8;
 /// 64-bit words of a [`StiffspringKnobQ16`].
-pub const STIFFSPRING_KNOB_Q16_WORDS: usize = 61;
+pub const STIFFSPRING_KNOB_Q16_WORDS: usize = 60;
 /// Bytes of a [`StiffspringKnobQ16`].
 pub const STIFFSPRING_KNOB_Q16_SIZE: usize = STIFFSPRING_KNOB_Q16_WORDS * 8;
 

@@ -468,6 +468,11 @@ impl<S: Scalar> Magnets<S> {
         }
     }
 
+    /// Whether there are magnets.
+    pub(crate) fn any(&self) -> bool {
+        self.count > 0
+    }
+
     /// Updates the nearest magnet and the capture for `angle`. Returns the extension
     /// `angle − centre` of the capturing magnet (zero when free), whether the rotor is
     /// captured, and the magnet that captured it this period, if any.

@@ -306,13 +306,13 @@ pub struct Knob<S: Scalar> {
     knee: f64,
     max_speed: Option<f64>,
     zone_stiffness: [f64; 3],
-    // What `loop_coefficients` derives its report from (`LoopCoefficients::of`), in place
-    // of the report itself: 27 bytes instead of 96, and a knob started from a `const`
-    // design copies no array of `f64` out of it (the copy that linked `memcpy`).
+    // What `loop_coefficients` derives its report from (`LoopCoefficients::of`), with
+    // `zone_stiffness`, `damping` and the zones that occur (`bounded`, the magnets), in
+    // place of the report itself: 24 bytes instead of 96, and a knob started from a
+    // `const` design copies no array of `f64` out of it (the copy that linked `memcpy`).
     dt: f64,
     inertia: f64,
     filter_alpha: f64,
-    zone_present: [bool; 3],
 }
 
 impl<S: Scalar> Knob<S> {
@@ -529,11 +529,6 @@ impl<S: Scalar> Knob<S> {
             dt: v.dt,
             inertia: v.inertia,
             filter_alpha: v.alpha,
-            zone_present: [
-                v.zones[0].is_some(),
-                v.zones[1].is_some(),
-                v.zones[2].is_some(),
-            ],
         }
     }
 
@@ -1170,9 +1165,12 @@ impl<S: Scalar> Knob<S> {
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn loop_coefficients(&self) -> [Option<LoopCoefficients>; 3] {
+        // The zones the set-up checked: free always, held where there are magnets,
+        // beyond where there are endstops.
+        let present = [true, self.magnets.any(), self.bounded];
         let mut zones = [None; 3];
         for (z, zone) in zones.iter_mut().enumerate() {
-            if self.zone_present[z] {
+            if present[z] {
                 let (k, b) = (self.zone_stiffness[z], self.damping);
                 *zone = Some(LoopCoefficients::of(
                     k,
