@@ -255,19 +255,31 @@ impl<S: Scalar> Ladder<S> {
 
     /// Moves the index toward `angle` (at most [`MAX_WALK`] detents) and returns the
     /// number of detents it moved, signed.
-    #[inline]
+    ///
+    /// The test for a move is inline, and the walk itself out of line: most periods do
+    /// not move, and one copy of the walk serves this, [`Self::seek`] and
+    /// [`Self::settle`] (an inlined walk of four unrolled steps was 300 bytes of
+    /// `Knob::update` on the Cortex-M4F, `scripts/size-report`).
+    #[inline(always)]
     pub(crate) fn update(&mut self, angle: S) -> i8 {
-        // At most MAX_WALK (4) detents: the sum fits an i8.
-        self.walk::<MAX_WALK>(angle) as i8
+        let e = angle.sub(self.centre);
+        if (e > self.threshold && self.index < self.max_index)
+            || (e < self.neg_threshold && self.index > self.min_index)
+        {
+            // At most MAX_WALK (4) detents: the sum fits an i8.
+            self.walk(angle, MAX_WALK) as i8
+        } else {
+            0
+        }
     }
 
-    /// Walks the index toward `angle`, at most `LIMIT` detents; returns how many it
+    /// Walks the index toward `angle`, at most `limit` detents; returns how many it
     /// moved. The walk is monotone (a switching point lies at least half a width from its
     /// centre), so it ends.
-    #[inline(always)]
-    fn walk<const LIMIT: usize>(&mut self, angle: S) -> i32 {
+    #[inline(never)]
+    fn walk(&mut self, angle: S, limit: usize) -> i32 {
         let mut moved = 0i32;
-        for _ in 0..LIMIT {
+        for _ in 0..limit {
             let e = angle.sub(self.centre);
             if e > self.threshold && self.index < self.max_index {
                 self.up();
@@ -292,13 +304,13 @@ impl<S: Scalar> Ladder<S> {
     /// [`MAX_WALK`] detents, up to [`MAX_SEEK`] (reset, and taking up the readings after a
     /// sensor fault); returns how many detents it moved.
     pub(crate) fn seek(&mut self, angle: S) -> i32 {
-        self.walk::<MAX_SEEK>(angle)
+        self.walk(angle, MAX_SEEK)
     }
 
     /// Puts the index on the detent whose centre is nearest `angle` (ties to the higher),
     /// walking from where it is: set-up only, as many detents as that takes.
     pub(crate) fn settle(&mut self, angle: S) {
-        while self.walk::<MAX_SEEK>(angle) != 0 {}
+        while self.walk(angle, MAX_SEEK) != 0 {}
         // The walk stops within the switching threshold (at least half a width) of a
         // centre: the nearest is this one or a neighbour.
         let here = angle.sub(self.centre).abs();

@@ -144,21 +144,33 @@ pub(crate) fn spring<S: Scalar>(
 }
 
 /// The torque: `−(spring + damping)`, clamped to `[−1, 1]`, with a float's rounding noise
-/// below [`TORQUE_FLOOR`] sent as zero; the last arm cannot be reached from clamped
-/// inputs, but keeps a NaN from ever leaving.
+/// below [`TORQUE_FLOOR`] sent as zero; so is a NaN, which clamped inputs cannot give,
+/// so that none ever leaves.
 #[inline(always)]
 pub(crate) fn torque<S: Scalar>(spring: S, damping: S, floor: S) -> S {
     let t = spring.add(damping).neg();
-    if t > S::ONE {
-        S::ONE
-    } else if t < S::ONE.neg() {
-        S::ONE.neg()
-    } else if S::RESOLUTION == 0.0 && t.abs() < floor {
-        // Compiled out in fixed point, where the floor is below the last bit.
-        S::ZERO
-    } else if t >= S::ONE.neg() {
-        t
+    if S::RESOLUTION > 0.0 {
+        // Fixed point: two comparisons with constants (its `abs` saturates, at the cost
+        // of five instructions), and no floor, which is below the last bit.
+        if t > S::ONE {
+            S::ONE
+        } else if t < S::ONE.neg() {
+            S::ONE.neg()
+        } else {
+            t
+        }
     } else {
-        S::ZERO
+        // A float: one `abs` and two comparisons of it. Below the floor (or NaN) is
+        // none, above the limit is the limit with the torque's sign.
+        let size = t.abs();
+        if size >= floor {
+            if size > S::ONE {
+                if t > S::ZERO { S::ONE } else { S::ONE.neg() }
+            } else {
+                t
+            }
+        } else {
+            S::ZERO
+        }
     }
 }

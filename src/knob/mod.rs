@@ -245,8 +245,8 @@ const BEYOND: usize = 2;
 #[derive(Clone, Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Knob<S: Scalar> {
-    lowest: S,
-    highest: S,
+    /// The largest angle the arithmetic holds, either way (`Knob::reach`).
+    reach: S,
     /// The last reading the law used.
     previous: S,
     /// Its movement from the one before (radians per period).
@@ -266,8 +266,11 @@ pub struct Knob<S: Scalar> {
     /// While lost: the last reading and its step from the one before.
     candidate: S,
     candidate_step: S,
-    /// `1/FADE_PERIODS`, the fade's step.
+    /// `1/FADE_PERIODS`, the fade's step, and while fading in the fraction of the
+    /// torque given (the fade's steps so far times the step: kept as it is summed, so
+    /// that the cold path has no loop).
     fade_unit: S,
+    fade: S,
     /// After a reconfiguration: the old layout's torque less the new one's, and the most
     /// it moves to zero per period (one count's torque in the free zone, at least
     /// 1/256 of the limit).
@@ -440,19 +443,18 @@ impl<S: Scalar> Knob<S> {
 
     /// Refuses an initial angle the backend cannot hold, or NaN.
     fn check_start(design: &KnobDesign<S>, initial_angle: S) -> Result<(), KnobError> {
-        let (lowest, highest) = (design.parts.lowest.get(), design.parts.highest.get());
-        // Checked in the backend's arithmetic: a NaN fails both comparisons.
-        if !(initial_angle >= lowest && initial_angle <= highest) {
-            let start = initial_angle.to_f64();
-            KnobError::finite(start, Parameter::Position)?;
-            return Err(KnobError::range(
-                Parameter::Position,
-                Limit::BackendRange,
-                start.abs(),
-                design.design.reach,
-            ));
+        // Checked in the backend's arithmetic: a NaN fails the comparison.
+        if initial_angle.abs() <= design.parts.reach.get() {
+            return Ok(());
         }
-        Ok(())
+        let start = initial_angle.to_f64();
+        KnobError::finite(start, Parameter::Position)?;
+        Err(KnobError::range(
+            Parameter::Position,
+            Limit::BackendRange,
+            start.abs(),
+            design.design.reach,
+        ))
     }
 
     /// The knob of `design` at `initial_angle`, before its detent and states are found
@@ -461,7 +463,6 @@ impl<S: Scalar> Knob<S> {
     fn from_parts(design: &KnobDesign<S>, initial_angle: S) -> Self {
         let v = &design.design;
         let p = &design.parts;
-        let (lowest, highest) = (p.lowest.get(), p.highest.get());
         let zone = |z: &parts::ZoneParts<S>| ZoneGains {
             other: z.other.get(),
             shape: Shape {
@@ -473,8 +474,7 @@ impl<S: Scalar> Knob<S> {
         };
         let jolt = p.jolt.get();
         Knob {
-            lowest,
-            highest,
+            reach: p.reach.get(),
             previous: initial_angle,
             last_step: S::ZERO,
             held: initial_angle,
@@ -487,6 +487,7 @@ impl<S: Scalar> Knob<S> {
             candidate: initial_angle,
             candidate_step: S::ZERO,
             fade_unit: p.fade_unit.get(),
+            fade: S::ZERO,
             offset: S::ZERO,
             slew: p.slew.get(),
             damping_state: S::ZERO,
@@ -577,7 +578,9 @@ impl<S: Scalar> Knob<S> {
     /// True for an angle inside the range the arithmetic holds (never for a NaN).
     #[inline(always)]
     fn in_reach(&self, angle: S) -> bool {
-        angle <= self.highest && angle >= self.lowest
+        // The reach is symmetric about 0 (and in fixed point the whole range, which
+        // `abs` saturates into): one comparison.
+        angle.abs() <= self.reach
     }
 
     /// The endstop the rotor is past at `angle` (beyond its rest zone and knee).
@@ -822,6 +825,7 @@ impl<S: Scalar> Knob<S> {
         let hit = if beyond != self.beyond { beyond } else { None };
         self.beyond = beyond;
         self.mode = Mode::Fading { step: 0 };
+        self.fade = S::ZERO;
         // The hot path takes the readings again; `ease` fades the torque in.
         self.gate = self.jolt;
         self.last_torque = S::ZERO;
@@ -851,35 +855,34 @@ impl<S: Scalar> Knob<S> {
     }
 
     /// The torque of a period the law ran: kept as the last torque while tracking; faded
-    /// in after a resync, or blended after a reconfiguration, otherwise.
+    /// in after a resync, or blended after a reconfiguration, otherwise. Only the torque
+    /// goes through the cold path, so that the output is written once, in place.
     #[inline(always)]
     fn settle_torque(&mut self, out: KnobOutput<S>) -> KnobOutput<S> {
-        if matches!(self.mode, Mode::Tracking) {
-            self.last_torque = out.torque;
-            out
+        let torque = if matches!(self.mode, Mode::Tracking) {
+            out.torque
         } else {
-            self.ease(out)
-        }
+            self.ease(out.torque)
+        };
+        self.last_torque = torque;
+        KnobOutput { torque, ..out }
     }
 
     /// [`Self::settle_torque`] while fading in or blending (`screen.rs`), out of line.
     #[cold]
     #[inline(never)]
-    fn ease(&mut self, mut out: KnobOutput<S>) -> KnobOutput<S> {
+    fn ease(&mut self, torque: S) -> S {
         match self.mode {
             // Taken up again: the torque times `n/FADE_PERIODS`.
             Mode::Fading { step: n } => {
                 let n = n + 1;
-                let mut fade = S::ZERO;
-                for _ in 0..n {
-                    fade = fade.add(self.fade_unit);
-                }
-                out.torque = out.torque.mul(fade);
+                self.fade = self.fade.add(self.fade_unit);
                 self.mode = if n >= screen::FADE_PERIODS {
                     Mode::Tracking
                 } else {
                     Mode::Fading { step: n }
                 };
+                torque.mul(self.fade)
             }
             // Reconfigured: the old torque's offset moved toward zero by one count's
             // torque per period.
@@ -892,16 +895,14 @@ impl<S: Scalar> Knob<S> {
                 } else {
                     S::ZERO
                 };
-                out.torque = law::torque(out.torque.neg(), self.offset.neg(), self.floor);
                 if self.offset == S::ZERO {
                     self.mode = Mode::Tracking;
                 }
+                law::torque(torque.neg(), self.offset.neg(), self.floor)
             }
             // Not reached: the gate is open only while tracking, fading or blending.
-            _ => {}
+            _ => torque,
         }
-        self.last_torque = out.torque;
-        out
     }
 
     #[inline(always)]
@@ -935,19 +936,11 @@ impl<S: Scalar> Knob<S> {
             (FREE, S::ZERO)
         };
         // An endstop is hit past its rest zone and knee, and again only after coming
-        // back inside by the hysteresis.
-        match self.beyond {
-            None if self.bounded && angle > self.hi_hit => {
-                self.beyond = Some(Endstop::Max);
-                events.endstop_hit = Some(Endstop::Max);
-            }
-            None if self.bounded && angle < self.lo_hit => {
-                self.beyond = Some(Endstop::Min);
-                events.endstop_hit = Some(Endstop::Min);
-            }
-            Some(Endstop::Max) if angle < self.hi_release => self.beyond = None,
-            Some(Endstop::Min) if angle > self.lo_release => self.beyond = None,
-            _ => {}
+        // back inside by the hysteresis. Its hit point lies beyond it (`hi_hit ≥ hi`,
+        // `lo_hit ≤ lo`), so that a knob inside the range that was not beyond has
+        // nothing to test: the common period skips the match.
+        if zone == BEYOND || self.beyond.is_some() {
+            self.track_endstops(angle, &mut events);
         }
 
         let z = &self.zones[zone];
@@ -968,6 +961,26 @@ impl<S: Scalar> Knob<S> {
             ),
             detent: self.ladder.index(),
             events,
+        }
+    }
+
+    /// The endstop's hit and release (`Self::period`): a hit past its rest zone and
+    /// knee, and again only after the rotor came back inside by the hysteresis.
+    #[inline(always)]
+    fn track_endstops(&mut self, angle: S, events: &mut KnobEvents) {
+        // Only a bounded knob is beyond an endstop or was: no test of `bounded` here.
+        match self.beyond {
+            None if angle > self.hi_hit => {
+                self.beyond = Some(Endstop::Max);
+                events.endstop_hit = Some(Endstop::Max);
+            }
+            None if angle < self.lo_hit => {
+                self.beyond = Some(Endstop::Min);
+                events.endstop_hit = Some(Endstop::Min);
+            }
+            Some(Endstop::Max) if angle < self.hi_release => self.beyond = None,
+            Some(Endstop::Min) if angle > self.lo_release => self.beyond = None,
+            _ => {}
         }
     }
 
@@ -1041,7 +1054,7 @@ impl<S: Scalar> Knob<S> {
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn reach(&self) -> f64 {
-        self.highest.to_f64()
+        self.reach.to_f64()
     }
 
     /// The largest change of the rotor's movement per period (radians per period per

@@ -41,8 +41,7 @@ impl<S: Scalar> ZoneParts<S> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct KnobParts<S> {
-    pub(crate) lowest: Raw<S>,
-    pub(crate) highest: Raw<S>,
+    pub(crate) reach: Raw<S>,
     pub(crate) play: Raw<S>,
     pub(crate) jolt: Raw<S>,
     pub(crate) max_step: Raw<S>,
@@ -107,8 +106,7 @@ impl<S: Scalar> KnobParts<S> {
             }),
         };
         KnobParts {
-            lowest: Raw::new(-v.reach),
-            highest: Raw::new(v.reach),
+            reach: Raw::new(v.reach),
             play: Raw::new(v.play_counts * v.count),
             jolt: Raw::new(jolt),
             max_step: Raw::new(max_step),

@@ -81,6 +81,7 @@ impl<S: Scalar> Knob<S> {
         let mut probe = next.clone();
         let new_torque = probe.period(angle, S::ZERO).torque;
         next.mode = self.mode;
+        next.fade = self.fade;
         next.candidate = self.candidate;
         next.candidate_step = self.candidate_step;
         next.last_torque = self.last_torque;
