@@ -9,7 +9,7 @@
 //! | `value_f32_raw_runtime` | the same from raw coefficients known at run time (validated at run time, in `f64`) |
 //! | `value_f32_exact_const` | the same tuned by the exact map at compile time (`tuning!(Tuning::from_frequency(…))`) |
 //! | `value_f32_exact_runtime` | the same tuned by the exact map at run time (`Tuning::from_frequency` in `f64`: there is no `f32` set-up path) |
-//! | `value_i16f16_raw` | one `SpringValue<I16F16, 1>` from a `const` raw tuning |
+//! | `value_i16f16_raw` | one `SpringValue<I16F16, 1>` from a raw tuning converted to `I16F16` at compile time (`tuning!(…, I16F16)`, `SpringValue::from_tuned_in`) |
 //! | `batch16_f32` | a `SpringBatch<f32, 1, 16>` of 16 values from a `const` raw tuning |
 //! | `rope_f32` | an `f32` 2D rope `Scene` (8 particles, gravity, exact length kernel) |
 //! | `knob_f32` | an `f32` `Knob` with detents and endstops (set up at run time), updated from an encoder |
@@ -219,13 +219,15 @@ fn value_f32_exact_runtime() {
     }
 }
 
-/// A fixed-point value from a `const` raw tuning.
+/// A fixed-point value from a raw tuning converted to `I16F16` when the firmware is built
+/// (`tuning!` with the backend), started in place (`SpringValue::from_tuned_in`).
 #[allow(dead_code)]
 fn value_i16f16_raw() {
-    use stiffspring::I16F16;
-    const T: Tuning = tuning!(Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0));
+    use stiffspring::{I16F16, Tuned};
+    const T: Tuned<I16F16> = tuning!(Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0), I16F16);
     let start = I16F16::from_bits(black_box(0));
-    let Ok(mut v) = SpringValue::<I16F16, 1>::new([start], &T) else {
+    let mut slot = core::mem::MaybeUninit::uninit();
+    let Ok(v) = SpringValue::<I16F16, 1>::from_tuned_in(&mut slot, [start], &T) else {
         return;
     };
     v.set_target([I16F16::from_bits(black_box(100 << 16))]);

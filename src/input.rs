@@ -4,7 +4,7 @@
 //! scenes, so that each refuses the same input with the same error.
 
 use crate::error::{Bound, Error, Parameter, Remedy};
-use crate::scalar::Scalar;
+use crate::scalar::{RawGains, Scalar};
 use crate::tuning::Tuning;
 
 /// The gains of `tuning` in backend `S`, or the error that says why they do not exist:
@@ -18,35 +18,49 @@ use crate::tuning::Tuning;
 /// Cortex-M4F (`scripts/capi-size`).
 #[inline]
 pub(crate) fn gains_of<S: Scalar>(tuning: &Tuning) -> Result<S::Gains, Error> {
+    match RawGains::<S>::new(tuning.stiffness(), tuning.damping()) {
+        Some(gains) => Ok(gains.get()),
+        None => Err(gains_error::<S>(tuning)),
+    }
+}
+
+/// Why backend `S` cannot hold the gains of `tuning` ([`gains_of`]): which gain, and the
+/// smallest one it holds. A `const fn`, shared with [`Tuned::new`](crate::Tuned::new).
+#[inline]
+pub(crate) const fn gains_error<S: Scalar>(tuning: &Tuning) -> Error {
     let (k, d) = (tuning.stiffness(), tuning.damping());
-    S::gains(k, d).ok_or_else(|| {
-        let (parameter, value) = if S::gains(k, 0.0).is_none() {
-            (Parameter::Stiffness, k)
+    let stiffness = RawGains::<S>::new(k, 0.0).is_none();
+    let (parameter, value) = if stiffness {
+        (Parameter::Stiffness, k)
+    } else {
+        (Parameter::Damping, d)
+    };
+    // The smallest power of two the backend holds, found by halving: this runs only when
+    // set-up fails (2⁻²⁴ for `C_k` in `I16F16`, 2⁻³² in `I32F32`).
+    let mut least = 1.0;
+    while least > f64::MIN_POSITIVE && held::<S>(0.5 * least, stiffness) {
+        least *= 0.5;
+    }
+    Error::Unrepresentable {
+        parameter,
+        backend: S::NAME,
+        value,
+        limit: least,
+        remedy: if S::RESOLUTION > 0.0 {
+            Remedy::LowerRate
         } else {
-            (Parameter::Damping, d)
-        };
-        let held = |v: f64| match parameter {
-            Parameter::Stiffness => S::gains(v, 0.0).is_some(),
-            _ => S::gains(0.0, v).is_some(),
-        };
-        // The smallest power of two the backend holds, found by halving: this runs only
-        // when set-up fails (2⁻²⁴ for `C_k` in `I16F16`, 2⁻³² in `I32F32`).
-        let mut least = 1.0;
-        while least > f64::MIN_POSITIVE && held(0.5 * least) {
-            least *= 0.5;
-        }
-        Error::Unrepresentable {
-            parameter,
-            backend: S::NAME,
-            value,
-            limit: least,
-            remedy: if S::RESOLUTION > 0.0 {
-                Remedy::LowerRate
-            } else {
-                Remedy::WiderBackend
-            },
-        }
-    })
+            Remedy::WiderBackend
+        },
+    }
+}
+
+/// Whether backend `S` holds `v` as the stiffness (or as the damping) alone.
+const fn held<S: Scalar>(v: f64, stiffness: bool) -> bool {
+    if stiffness {
+        RawGains::<S>::new(v, 0.0).is_some()
+    } else {
+        RawGains::<S>::new(0.0, v).is_some()
+    }
 }
 
 /// [`Scalar::MAX`] in the backend's type (a constant: the conversion folds).

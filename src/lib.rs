@@ -100,7 +100,7 @@ pub use rubber_band::RubberBand;
 pub use scalar::Scalar;
 pub use scroll::{Scroll, ScrollPhase};
 pub use snap::Snap;
-pub use tuning::{MAX_SETTLING_STEPS, Oscillator, Tuning, presets};
+pub use tuning::{MAX_SETTLING_STEPS, Oscillator, Tuned, Tuning, presets};
 pub use value::SpringValue;
 
 /// Re-export of the fixed-point types the backends are implemented for.

@@ -6,7 +6,7 @@
 //! step changes (its moving path has no flag test; see `SpringValue::step`).
 
 use crate::error::{Error, Parameter, positive};
-use crate::scalar::Scalar;
+use crate::scalar::{RawState, Scalar};
 use crate::tuning::Tuning;
 
 /// The smallest motion that still counts: a position threshold (the user's unit) and a
@@ -92,6 +92,9 @@ impl RestThreshold {
         }
     }
 
+    /// [`RestThreshold::default`], as a constant for set-up computed at compile time.
+    pub(crate) const DEFAULT: RestThreshold = RestThreshold::from_visible_change(1e-3);
+
     const fn from_visible_change(change: f64) -> Self {
         let position = 0.75 * change;
         RestThreshold {
@@ -127,7 +130,7 @@ impl Default for RestThreshold {
     /// assert_eq!((t.position(), t.velocity()), (0.75e-3, 0.046875));
     /// ```
     fn default() -> Self {
-        RestThreshold::from_visible_change(1e-3)
+        RestThreshold::DEFAULT
     }
 }
 
@@ -148,36 +151,7 @@ impl<S: Scalar> RestBand<S> {
 
     /// The band for a spring with `√C_k = root_stiffness` stepped every `dt`.
     pub(crate) fn scaled(threshold: &RestThreshold, root_stiffness: f64, dt: f64) -> Self {
-        // Box |x| ≤ p/√2, |u| ≤ p·√C_k/√2: an undamped spring inside it has an amplitude
-        // below p·(1 + θ/4) (see `RestThreshold`).
-        let p = threshold.position * core::f64::consts::FRAC_1_SQRT_2;
-        let by_amplitude = p * root_stiffness;
-        let by_speed = threshold.velocity * dt;
-        let u = if by_amplitude < by_speed {
-            by_amplitude
-        } else {
-            by_speed
-        };
-        // Fixed point: motion of about one last bit counts as rest, and never less. The
-        // offset band is at least a position's last bit, so that rounding the state to a
-        // position never hides motion the band would have caught (the spring's dead band
-        // is below a last bit: set-up refuses C_k below the state's resolution). The
-        // step-velocity band is at least `lsb·√C_k`, the kept step velocity of a swing of
-        // one last bit: it holds the few-bit cycles of the state that a spring beyond the
-        // square can end in (C_k ≥ 1.5, or C_d > 1), and no more. A whole last bit per
-        // step would be a swing of `lsb/√C_k`, 32 times the default threshold for a 1 Hz
-        // spring at 10 kHz in `I16F16`.
-        let lsb = S::RESOLUTION;
-        let clamp = |v: f64, least: f64| {
-            let v = if v < least { least } else { v };
-            // At most half the state's range, so that `Scalar::within` cannot overflow.
-            let half = 0.5 * S::STATE_MAX;
-            S::band(S::state_from_f64(if v > half { half } else { v }))
-        };
-        RestBand {
-            offset: clamp(p, lsb),
-            step_velocity: clamp(u, lsb * root_stiffness),
-        }
+        RestBandParts::scaled(threshold, root_stiffness, dt).get()
     }
 
     /// The band of a [`Decay`](crate::Decay) (a friction with no stiffness), whose offset
@@ -234,4 +208,61 @@ impl<S: Scalar> RestBand<S> {
     pub(crate) fn contains_all(&self, offset: S::State, step_velocity: S::State) -> bool {
         S::in_band(step_velocity, self.step_velocity) & S::in_band(offset, self.offset)
     }
+}
+
+/// [`RestBand`] as the bits of its two bounds, computed by a `const fn`: what
+/// [`RestBand::scaled`] builds at run time, and what a [`Tuned`](crate::Tuned) carries
+/// from the compiler.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct RestBandParts<S> {
+    offset: RawState<S>,
+    step_velocity: RawState<S>,
+}
+
+impl<S: Scalar> RestBandParts<S> {
+    /// The band of `threshold` for a spring of `√C_k = root_stiffness` at `dt`.
+    pub(crate) const fn scaled(threshold: &RestThreshold, root_stiffness: f64, dt: f64) -> Self {
+        // Box |x| ≤ p/√2, |u| ≤ p·√C_k/√2: an undamped spring inside it has an amplitude
+        // below p·(1 + θ/4) (see `RestThreshold`).
+        let p = threshold.position * core::f64::consts::FRAC_1_SQRT_2;
+        let by_amplitude = p * root_stiffness;
+        let by_speed = threshold.velocity * dt;
+        let u = if by_amplitude < by_speed {
+            by_amplitude
+        } else {
+            by_speed
+        };
+        // Fixed point: motion of about one last bit counts as rest, and never less. The
+        // offset band is at least a position's last bit, so that rounding the state to a
+        // position never hides motion the band would have caught (the spring's dead band
+        // is below a last bit: set-up refuses C_k below the state's resolution). The
+        // step-velocity band is at least `lsb·√C_k`, the kept step velocity of a swing of
+        // one last bit: it holds the few-bit cycles of the state that a spring beyond the
+        // square can end in (C_k ≥ 1.5, or C_d > 1), and no more. A whole last bit per
+        // step would be a swing of `lsb/√C_k`, 32 times the default threshold for a 1 Hz
+        // spring at 10 kHz in `I16F16`.
+        let lsb = S::RESOLUTION;
+        RestBandParts {
+            offset: bound::<S>(p, lsb),
+            step_velocity: bound::<S>(u, lsb * root_stiffness),
+        }
+    }
+
+    /// The band.
+    #[inline]
+    pub(crate) fn get(&self) -> RestBand<S> {
+        RestBand {
+            offset: S::band(self.offset.get()),
+            step_velocity: S::band(self.step_velocity.get()),
+        }
+    }
+}
+
+/// `v`, at least `least` and at most half the state's range (so that `Scalar::within`
+/// cannot overflow), as a state.
+const fn bound<S: Scalar>(v: f64, least: f64) -> RawState<S> {
+    let v = if v < least { least } else { v };
+    let half = 0.5 * S::STATE_MAX;
+    RawState::new(if v > half { half } else { v })
 }

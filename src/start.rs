@@ -19,7 +19,7 @@
 //! scaled by the retention: `ũ = P̃·x + Q̃·v` with `P̃ = (1 − C_d)·P`, `Q̃ = (1 − C_d)·Q`.
 
 use crate::error::{Error, Parameter, Remedy};
-use crate::scalar::Scalar;
+use crate::scalar::{RawFactor, RawState, Scalar};
 use crate::tuning::Tuning;
 
 /// `P`, `Q` and `1/Q` in the backend's factor format, and the bound on the state.
@@ -50,38 +50,12 @@ impl<S: Scalar> Start<S> {
     /// not build the rest of it.
     #[inline]
     pub(crate) fn new(tuning: &Tuning) -> Result<Self, Error> {
-        let (p, q) = tuning.start_weights();
-        let limit = if S::RESOLUTION > 0.0 {
-            // Half the range: a product that saturated at the end of the state is then
-            // seen to be beyond the limit, never taken for a value inside it.
-            0.5 * S::STATE_MAX
-        } else {
-            // Twice the growth: rounding each step adds to the state a little more than
-            // the exact map would.
-            let limit = S::STATE_MAX / (2.0 * tuning.growth());
-            if limit.is_nan() || limit < 2.0 * S::MAX {
-                return Err(Error::Unrepresentable {
-                    parameter: Parameter::Stiffness,
-                    backend: S::NAME,
-                    value: tuning.growth(),
-                    limit: S::STATE_MAX / (4.0 * S::MAX),
-                    remedy: Remedy::WiderBackend,
-                });
-            }
-            limit
-        };
-        let inverse = |v: f64| if v != 0.0 { 1.0 / v } else { 0.0 };
-        Ok(Start {
-            offset_weight: S::factor(p),
-            velocity_weight: S::factor(q),
-            inverse_velocity_weight: S::factor(inverse(q)),
-            inverse_retention: S::factor(inverse(tuning.retention())),
-            limit: S::state_from_f64(limit),
-        })
+        match StartParts::new(tuning) {
+            Ok(parts) => Ok(parts.get()),
+            Err(e) => Err(e),
+        }
     }
 
-    /// The step velocity `P·x + Q·v` for offset `x` and velocity `v`, or the error that
-    /// says it leaves the state's range.
     pub(crate) fn step_velocity(&self, offset: S::State, velocity: S) -> Result<S::State, Error> {
         self.check(
             self.step_velocity_unchecked(offset, velocity),
@@ -130,6 +104,71 @@ impl<S: Scalar> Start<S> {
             S::state_sub(S::STATE_ZERO, self.limit)
         }
     }
+}
+
+/// [`Start`] as the bits of its factors and limit, computed by a `const fn`: what
+/// [`Start::new`] builds at run time, and what a [`Tuned`](crate::Tuned) carries from the
+/// compiler.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub(crate) struct StartParts<S> {
+    offset_weight: RawFactor<S>,
+    velocity_weight: RawFactor<S>,
+    inverse_velocity_weight: RawFactor<S>,
+    inverse_retention: RawFactor<S>,
+    limit: RawState<S>,
+}
+
+impl<S: Scalar> StartParts<S> {
+    /// The start data of `tuning` in backend `S` ([`Start::new`]). `#[inline]`, as
+    /// `Start::new`.
+    #[inline]
+    pub(crate) const fn new(tuning: &Tuning) -> Result<Self, Error> {
+        let (p, q) = tuning.start_weights();
+        let limit = if S::RESOLUTION > 0.0 {
+            // Half the range: a product that saturated at the end of the state is then
+            // seen to be beyond the limit, never taken for a value inside it.
+            0.5 * S::STATE_MAX
+        } else {
+            // Twice the growth: rounding each step adds to the state a little more than
+            // the exact map would.
+            let limit = S::STATE_MAX / (2.0 * tuning.growth());
+            if limit.is_nan() || limit < 2.0 * S::MAX {
+                return Err(Error::Unrepresentable {
+                    parameter: Parameter::Stiffness,
+                    backend: S::NAME,
+                    value: tuning.growth(),
+                    limit: S::STATE_MAX / (4.0 * S::MAX),
+                    remedy: Remedy::WiderBackend,
+                });
+            }
+            limit
+        };
+        Ok(StartParts {
+            offset_weight: RawFactor::new(p),
+            velocity_weight: RawFactor::new(q),
+            inverse_velocity_weight: RawFactor::new(inverse(q)),
+            inverse_retention: RawFactor::new(inverse(tuning.retention())),
+            limit: RawState::new(limit),
+        })
+    }
+
+    /// The start data.
+    #[inline]
+    pub(crate) fn get(&self) -> Start<S> {
+        Start {
+            offset_weight: self.offset_weight.get(),
+            velocity_weight: self.velocity_weight.get(),
+            inverse_velocity_weight: self.inverse_velocity_weight.get(),
+            inverse_retention: self.inverse_retention.get(),
+            limit: self.limit.get(),
+        }
+    }
+}
+
+/// `1/v`, and 0 for 0 (a weight of 0 has no inverse to apply).
+const fn inverse(v: f64) -> f64 {
+    if v != 0.0 { 1.0 / v } else { 0.0 }
 }
 
 /// `state` if `|state| ≤ limit`, else the error that names

@@ -21,7 +21,8 @@ use crate::motion::Motion;
 use crate::rest::{RestBand, RestThreshold};
 use crate::scalar::Scalar;
 use crate::start::Start;
-use crate::tuning::Tuning;
+use crate::tuning::{Tuned, Tuning};
+use core::mem::MaybeUninit;
 
 /// A `D`-dimensional value springing toward a target, in backend `S`.
 ///
@@ -92,18 +93,90 @@ impl<S: Scalar, const D: usize> SpringValue<S, D> {
         for p in position {
             check_position(p, Parameter::Position)?;
         }
-        let threshold = RestThreshold::default();
-        Ok(SpringValue {
+        // The conversions of `Tuned::new`, each inlined here (as `gains_of` and
+        // `Start::new` are), so that a caller keeping only the error's kind drops its
+        // construction (the C API: `scripts/capi-size`).
+        let gains = gains_of::<S>(tuning)?;
+        let start = Start::new(tuning)?;
+        let band = RestBand::new(&RestThreshold::DEFAULT, tuning);
+        Ok(Self::at_rest_with(position, tuning, (gains, start, band)))
+    }
+
+    /// A value at rest at `position`, tuned by a tuning converted to this backend when the
+    /// firmware was built ([`Tuned`], from [`tuning!`](crate::tuning!) with the backend):
+    /// [`Self::new`]'s value, to the bit, without the run-time conversion (in fixed point
+    /// an `f64` conversion of the gains to mantissas; `docs/firmware.md`, the flash
+    /// table).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] for a position.
+    ///
+    /// ```
+    /// use stiffspring::{I16F16, SpringValue, Tuned, Tuning, tuning};
+    ///
+    /// const T: Tuned<I16F16> = tuning!(Tuning::from_frequency(2.0, 0.7, 1.0 / 120.0), I16F16);
+    /// let v = SpringValue::from_tuned([I16F16::from_num(3)], &T)?;
+    /// assert!(v.is_at_rest());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn from_tuned(position: [S; D], tuned: &Tuned<S>) -> Result<Self, Error> {
+        for p in position {
+            check_position(p, Parameter::Position)?;
+        }
+        Ok(Self::at_rest_with(position, tuned.tuning(), tuned.parts()))
+    }
+
+    /// [`Self::from_tuned`], built in `slot` instead of returned: for storage the firmware
+    /// keeps (a `static`, say). An `I16F16` value is 192 bytes, and moving one out of a
+    /// `Result` into its storage copies all of it with the compiler's `memcpy` (742 bytes
+    /// of flash on the Cortex-M4F, `scripts/size-report`); built in place, it is written
+    /// where it lies. `slot` is written only when this returns `Ok`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Self::from_tuned`].
+    ///
+    /// ```
+    /// use core::mem::MaybeUninit;
+    /// use stiffspring::{I16F16, SpringValue, Tuned, Tuning, tuning};
+    ///
+    /// const T: Tuned<I16F16> = tuning!(Tuning::rigid(0.01), I16F16);
+    /// let mut slot = MaybeUninit::uninit();
+    /// let v = SpringValue::<I16F16>::from_tuned_in(&mut slot, [I16F16::ZERO], &T)?;
+    /// assert!(v.is_at_rest());
+    /// # Ok::<(), stiffspring::Error>(())
+    /// ```
+    pub fn from_tuned_in<'a>(
+        slot: &'a mut MaybeUninit<Self>,
+        position: [S; D],
+        tuned: &Tuned<S>,
+    ) -> Result<&'a mut Self, Error> {
+        for p in position {
+            check_position(p, Parameter::Position)?;
+        }
+        Ok(slot.write(Self::at_rest_with(position, tuned.tuning(), tuned.parts())))
+    }
+
+    /// The value at rest at `position` (checked) with `tuning`'s numbers in this backend
+    /// and the default rest threshold.
+    #[inline(always)]
+    fn at_rest_with(
+        position: [S; D],
+        tuning: &Tuning,
+        (gains, start, band): (S::Gains, Start<S>, RestBand<S>),
+    ) -> Self {
+        SpringValue {
             offset: [S::STATE_ZERO; D],
             step_velocity: [S::STATE_ZERO; D],
-            gains: gains_of::<S>(tuning)?,
+            gains,
             target: position,
-            band: RestBand::new(&threshold, tuning),
+            band,
             at_rest: true,
-            start: Start::new(tuning)?,
-            threshold,
+            start,
+            threshold: RestThreshold::DEFAULT,
             rest_scales: (tuning.root_stiffness(), tuning.dt()),
-        })
+        }
     }
 
     /// The same value with another rest threshold.

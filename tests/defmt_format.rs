@@ -24,7 +24,7 @@ use stiffspring::scene::{
 use stiffspring::{
     BatchIndex, BatchMotion, Bound, Bounds, Decay, Error, Friction, I16F16, I32F32, Knob,
     KnobConfig, KnobOutput, Motion, Moved, Oscillator, Parameter, Remedy, RestThreshold,
-    RubberBand, Scroll, ScrollPhase, Snap, SpringBatch, SpringValue, Stagger, Trail, Tuning,
+    RubberBand, Scroll, ScrollPhase, Snap, SpringBatch, SpringValue, Stagger, Trail, Tuned, Tuning,
     TuningSlot,
 };
 
@@ -49,6 +49,7 @@ const _: () = {
     is_format::<Tuning>();
     is_format::<Oscillator>();
     is_format::<RestThreshold>();
+    in_every_backend!(Tuned);
     is_format::<Error>();
     is_format::<Parameter>();
     is_format::<Bound>();

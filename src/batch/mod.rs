@@ -26,7 +26,7 @@ pub use index::{BatchIndex, BatchMotion};
 pub use moved::Moved;
 pub use stagger::Stagger;
 pub use trail::Trail;
-use tunings::Tuned;
+use tunings::BatchTuning;
 pub use tunings::TuningSlot;
 
 /// Up to `N` values of `D` dimensions in backend `S`, sharing one [`Tuning`] (and so one
@@ -79,7 +79,7 @@ pub struct SpringBatch<S: Scalar, const D: usize, const N: usize, const T: usize
     len: usize,
     /// The tunings values can have; `tunings[..tuning_count]` are set, the first is the
     /// one `new` (or `set_tuning`) was given.
-    tunings: [Tuned<S>; T],
+    tunings: [BatchTuning<S>; T],
     tuning_count: u8,
     /// By slot: which of `tunings` the value has (always below `tuning_count`).
     tuning_of: [u8; N],
@@ -107,7 +107,7 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
         const { assert!(N <= u16::MAX as usize) };
         const { assert!(T >= 1 && T <= u8::MAX as usize) };
         let threshold = RestThreshold::default();
-        let tuned = Tuned::new(tuning, &threshold)?;
+        let tuned = BatchTuning::new(tuning, &threshold)?;
         Ok(Self::with_parts(tuned, threshold))
     }
 
@@ -139,13 +139,13 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
         // arrays cleared in place): copied inside the literal, the tuning made LLVM build
         // the literal on the stack and copy it into `slot` (376 bytes, a `memcpy`).
         let threshold = RestThreshold::default();
-        let tuned = Tuned::new(tuning, &threshold)?;
+        let tuned = BatchTuning::new(tuning, &threshold)?;
         Ok(slot.write(Self::with_parts(tuned, threshold)))
     }
 
     /// An empty batch of the one tuning `tuned`, which [`SpringBatch::new`] checks.
     #[inline(always)]
-    fn with_parts(tuned: Tuned<S>, threshold: RestThreshold) -> Self {
+    fn with_parts(tuned: BatchTuning<S>, threshold: RestThreshold) -> Self {
         const { assert!(N <= u16::MAX as usize) };
         const { assert!(T >= 1 && T <= u8::MAX as usize) };
         SpringBatch {
@@ -294,7 +294,7 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
     /// # Ok::<(), stiffspring::Error>(())
     /// ```
     pub fn set_tuning(&mut self, tuning: &Tuning) -> Result<(), Error> {
-        let tuned = Tuned::new(tuning, &self.threshold)?;
+        let tuned = BatchTuning::new(tuning, &self.threshold)?;
         let mut velocities = self.step_velocity;
         for &slot in self.awake.iter() {
             let slot = slot as usize;

@@ -1,6 +1,6 @@
 //! The hot loop of a batch, and what a step reports.
 
-use super::{BatchIndex, BatchMotion, SpringBatch, Tuned};
+use super::{BatchIndex, BatchMotion, BatchTuning, SpringBatch};
 use crate::scalar::Scalar;
 
 /// Whether the target steps a batch several values at a time (SIMD), which a branch per
@@ -193,7 +193,7 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
     fn step_each_tuned(&mut self) {
         for &slot in self.awake.iter() {
             let slot = slot as usize;
-            let Tuned { gains, band, .. } = *self.tuned(slot);
+            let BatchTuning { gains, band, .. } = *self.tuned(slot);
             let (x, u) = (&mut self.offset[slot], &mut self.step_velocity[slot]);
             for k in 0..D {
                 S::advance(&gains, &mut x[k], &mut u[k]);

@@ -46,16 +46,16 @@ impl TuningSlot {
 /// A tuning with what a value's step and setters need of it, computed at set-up.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub(super) struct Tuned<S: Scalar> {
+pub(super) struct BatchTuning<S: Scalar> {
     pub(super) gains: S::Gains,
     pub(super) band: RestBand<S>,
     pub(super) start: Start<S>,
     pub(super) tuning: Tuning,
 }
 
-impl<S: Scalar> Tuned<S> {
+impl<S: Scalar> BatchTuning<S> {
     pub(super) fn new(tuning: &Tuning, threshold: &RestThreshold) -> Result<Self, Error> {
-        Ok(Tuned {
+        Ok(BatchTuning {
             gains: gains_of::<S>(tuning)?,
             band: RestBand::new(threshold, tuning),
             start: Start::new(tuning)?,
@@ -112,7 +112,7 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
         if count == T {
             return Err(Error::CapacityFull { capacity: T });
         }
-        self.tunings[count] = Tuned::new(tuning, &self.threshold)?;
+        self.tunings[count] = BatchTuning::new(tuning, &self.threshold)?;
         self.tuning_count += 1;
         Ok(TuningSlot(count as u8))
     }
@@ -241,7 +241,7 @@ impl<S: Scalar, const D: usize, const N: usize, const T: usize> SpringBatch<S, D
 
     /// What a value's setters and its step use of its tuning.
     #[inline(always)]
-    pub(super) fn tuned(&self, slot: usize) -> &Tuned<S> {
+    pub(super) fn tuned(&self, slot: usize) -> &BatchTuning<S> {
         if T == 1 {
             &self.tunings[0]
         } else {

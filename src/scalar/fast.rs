@@ -23,10 +23,13 @@ pub(crate) struct FastFactor<M> {
 }
 
 /// A shift amount below 32. As an enum its loads carry their range, so a shift by it
-/// needs no `& 31` (a Cortex-M0 would spend two instructions on each).
+/// needs no `& 31` (a Cortex-M0 would spend two instructions on each). Two bytes wide,
+/// so that a [`FastFactor<i32>`] is 20 bytes of fields and no padding: with one byte
+/// each, moving a factor at run-time set-up copied its 18 bytes with `memcpy` (730
+/// bytes of flash on the Cortex-M4F, `scripts/capi-size`).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-#[repr(u8)]
+#[repr(u16)]
 #[rustfmt::skip]
 pub(crate) enum Shift {
     #[default]
@@ -83,6 +86,38 @@ pub(crate) mod mode {
     };
 }
 
+macro_rules! no_fast_path {
+    ($M:ty) => {
+        impl FastGains<$M> {
+            /// Gains the fast path does not take (headroom 0): written out, so that a
+            /// `const` tuning off the fast path stores zeros in place (its `Default`, built
+            /// as a temporary, was copied in with `memcpy`, 742 bytes of flash on the
+            /// Cortex-M4F).
+            const NONE: Self = FastGains {
+                stiffness: FastFactor::<$M>::NONE,
+                damping: FastFactor::<$M>::NONE,
+                headroom: 0,
+            };
+        }
+        impl FastFactor<$M> {
+            /// A factor of no fast form, with the shifts of `C = 0`'s (`k = 2`): unused
+            /// (the headroom of 0 keeps the fast path off), but not zero, so that the
+            /// gains hold no long run of zeros, which LLVM clears with
+            /// `__aeabi_memclr8` (174 bytes on the Cortex-M4F).
+            const NONE: Self = FastFactor {
+                mantissa: 0,
+                bias: 0,
+                scale: 0,
+                k: Shift::S2,
+                complement: Shift::S30,
+                halves: [0, 0],
+            };
+        }
+    };
+}
+no_fast_path!(i32);
+no_fast_path!(i64);
+
 impl FastGains<i32> {
     /// The fast form of the narrow gains `(mantissa, shift)`, or none (headroom 0).
     pub(crate) fn narrow(stiffness: (i32, i32), damping: (i32, i32)) -> Self {
@@ -108,7 +143,7 @@ impl FastGains<i32> {
                 damping,
                 headroom: 1 << 30,
             },
-            _ => FastGains::default(),
+            _ => Self::NONE,
         }
     }
 }
@@ -140,7 +175,7 @@ impl FastGains<i64> {
                 damping,
                 headroom: 1 << 62,
             },
-            _ => FastGains::default(),
+            _ => Self::NONE,
         }
     }
 }

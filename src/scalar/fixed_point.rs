@@ -14,8 +14,9 @@
 //! products are taken on the raw bits, with the rounding chosen in the parent module.
 
 use super::fast::{FastGains, broad_step, narrow_step};
+use super::raw_state::{encode_mantissa, fixed_state};
 use super::wide::{broad, narrow};
-use super::{Repr, Scalar, Sealed};
+use super::{Form, RawGains, Repr, Scalar, Sealed};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
 /// The gains `(C_k, C_d)` of a spring in a fixed-point backend: each a mantissa and an
@@ -121,22 +122,9 @@ macro_rules! fixed_backend {
                 self.to_num::<f64>()
             }
             fn gains(stiffness: f64, damping: f64) -> Option<Self::Gains> {
-                // One last bit of the state, in positions' units.
-                let state_lsb = Self::RESOLUTION / (1u64 << $guard) as f64;
-                // The spring stops for good within |x| < 1/C_k last bits of the state:
-                // below C_k = 2^−guard that dead band is wider than a position's last bit.
-                if stiffness != 0.0 && stiffness.abs() < state_lsb / Self::RESOLUTION {
-                    return None;
-                }
-                let (k, d) = (Self::factor(stiffness), Self::factor(damping));
-                if (stiffness != 0.0 && k.mantissa == 0) || (damping != 0.0 && d.mantissa == 0) {
-                    return None;
-                }
-                Some(FixedGains {
-                    stiffness: k,
-                    damping: d,
-                    fast: $fast(k, d),
-                })
+                // The one definition every backend shares, also evaluated at compile
+                // time (`RawGains`).
+                RawGains::<Self>::new(stiffness, damping).map(RawGains::get)
             }
             fn gains_to_f64(gains: &Self::Gains) -> (f64, f64) {
                 (
@@ -145,8 +133,11 @@ macro_rules! fixed_backend {
                 )
             }
             fn factor(value: f64) -> Self::Factor {
-                let (mantissa, shift) = $arith::encode(value);
-                FixedFactor { mantissa, shift }
+                let (mantissa, shift) = encode_mantissa(value, <$Half>::BITS);
+                FixedFactor {
+                    mantissa: mantissa as $Half,
+                    shift,
+                }
             }
             #[inline(always)]
             fn widen(self) -> $State {
@@ -159,18 +150,7 @@ macro_rules! fixed_backend {
                 <$S>::from_bits(r.clamp(<$Bits>::MIN as $State, <$Bits>::MAX as $State) as $Bits)
             }
             fn state_from_f64(value: f64) -> $State {
-                if value.is_nan() {
-                    return 0;
-                }
-                let scaled =
-                    value * (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64 * 4_294_967_296.0;
-                // `as` saturates at the ends of the integer type.
-                let r = if scaled >= 0.0 {
-                    scaled + 0.5
-                } else {
-                    scaled - 0.5
-                };
-                r as $State
+                fixed_state(value, <$State>::BITS, <$S>::FRAC_NBITS + $guard) as $State
             }
             fn state_to_f64(state: $State) -> f64 {
                 state as f64 / (1u64 << (<$S>::FRAC_NBITS + $guard - 32)) as f64 / 4_294_967_296.0
@@ -272,6 +252,34 @@ macro_rules! fixed_backend {
             #[inline]
             fn from_const_bits(bits: i64) -> Self {
                 <$S>::from_bits(bits as $Bits)
+            }
+            const FACTOR_FORM: Form = Form::Mantissa {
+                bits: <$Half>::BITS,
+            };
+            const STATE_FORM: Form = Form::Fixed {
+                bits: <$State>::BITS,
+                frac: <$S>::FRAC_NBITS + $guard,
+            };
+            // The state's last bit over a position's: 2^−guard.
+            const LEAST_GAIN: f64 = Self::RESOLUTION / (1u64 << $guard) as f64 / Self::RESOLUTION;
+            #[inline]
+            fn factor_from_const(mantissa: i64, shift: i32) -> Self::Factor {
+                FixedFactor {
+                    mantissa: mantissa as $Half,
+                    shift,
+                }
+            }
+            #[inline]
+            fn state_from_const(bits: i128) -> Self::State {
+                bits as $State
+            }
+            #[inline]
+            fn gains_from_factors(k: Self::Factor, d: Self::Factor) -> Self::Gains {
+                FixedGains {
+                    stiffness: k,
+                    damping: d,
+                    fast: $fast(k, d),
+                }
             }
             #[inline]
             fn coef_from_const_bits(bits: i64) -> Self::Coef {

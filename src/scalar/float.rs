@@ -1,6 +1,6 @@
 //! `f32` and `f64`: plain IEEE arithmetic; the state and the gains in the same format.
 
-use super::{Repr, Scalar, Sealed};
+use super::{Form, RawGains, Repr, Scalar, Sealed};
 
 /// The gains `(C_k, C_d)` of a spring in a float backend.
 ///
@@ -59,18 +59,9 @@ macro_rules! float_backend {
             }
             #[inline]
             fn gains(stiffness: f64, damping: f64) -> Option<Self::Gains> {
-                let (k, d) = (Self::from_f64(stiffness), Self::from_f64(damping));
-                // A gain that becomes subnormal loses its relative precision, one that
-                // becomes zero its effect: neither is the tuning that was asked for.
-                let lost = |c: f64, g: $F| c != 0.0 && g.abs() < $min_gain;
-                if lost(stiffness, k) || lost(damping, d) {
-                    None
-                } else {
-                    Some(FloatGains {
-                        stiffness: k,
-                        damping: d,
-                    })
-                }
+                // The one definition every backend shares, also evaluated at compile
+                // time (`RawGains`).
+                RawGains::<Self>::new(stiffness, damping).map(RawGains::get)
             }
             #[inline]
             fn gains_to_f64(gains: &Self::Gains) -> (f64, f64) {
@@ -173,6 +164,21 @@ macro_rules! float_backend {
                 Repr::F64
             };
             const COEF_REPR: Repr = <Self as Scalar>::REPR;
+            const FACTOR_FORM: Form = Form::Float(<Self as Scalar>::REPR);
+            const STATE_FORM: Form = Form::Float(<Self as Scalar>::REPR);
+            const LEAST_GAIN: f64 = $min_gain as f64;
+            #[inline]
+            fn factor_from_const(mantissa: i64, _shift: i32) -> Self::Factor {
+                <$F>::from_bits(mantissa as $Bits)
+            }
+            #[inline]
+            fn state_from_const(bits: i128) -> Self::State {
+                <$F>::from_bits(bits as $Bits)
+            }
+            #[inline]
+            fn gains_from_factors(stiffness: $F, damping: $F) -> Self::Gains {
+                FloatGains { stiffness, damping }
+            }
             #[inline]
             fn from_const_bits(bits: i64) -> Self {
                 <$F>::from_bits(bits as $Bits)

@@ -7,6 +7,7 @@ mod fast;
 mod fixed_point;
 mod float;
 mod raw;
+mod raw_state;
 #[cfg(feature = "fixed")]
 mod wide;
 
@@ -14,6 +15,8 @@ mod wide;
 pub use raw::Repr;
 #[allow(unused_imports)]
 pub(crate) use raw::{Raw, RawCoef};
+pub use raw_state::Form;
+pub(crate) use raw_state::{RawFactor, RawGains, RawState};
 
 #[cfg(feature = "fixed")]
 pub use fixed_point::{FixedFactor, FixedGains};
@@ -262,6 +265,27 @@ pub trait Scalar:
     /// The fraction whose bits `Repr::bits_of` gave. Set-up only.
     #[doc(hidden)]
     fn coef_from_const_bits(bits: i64) -> Self::Coef;
+    /// How [`Self::Factor`] stores a number (set-up only).
+    #[doc(hidden)]
+    const FACTOR_FORM: Form;
+    /// How [`Self::State`] stores a number (set-up only).
+    #[doc(hidden)]
+    const STATE_FORM: Form;
+    /// The smallest gain the backend holds: in a float the smallest normal number (a
+    /// subnormal gain loses its relative precision); in fixed point the state's last bit
+    /// over a position's (below it, the spring's dead band is wider than a position's
+    /// last bit).
+    #[doc(hidden)]
+    const LEAST_GAIN: f64;
+    /// The factor whose bits `RawFactor::new` gave. Set-up only.
+    #[doc(hidden)]
+    fn factor_from_const(mantissa: i64, shift: i32) -> Self::Factor;
+    /// The state whose bits `RawState::new` gave. Set-up only.
+    #[doc(hidden)]
+    fn state_from_const(bits: i128) -> Self::State;
+    /// The gains of two factors that [`Self::gains`] accepted (no `f64`). Set-up only.
+    #[doc(hidden)]
+    fn gains_from_factors(stiffness: Self::Factor, damping: Self::Factor) -> Self::Gains;
 
     /// `self + rhs` (saturating in fixed point).
     fn add(self, rhs: Self) -> Self;

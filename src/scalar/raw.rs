@@ -37,8 +37,8 @@ impl Repr {
             return 0;
         }
         match self {
-            Repr::F32 => (clamp(value, f32::MAX as f64) as f32).to_bits() as i64,
-            Repr::F64 => clamp(value, f64::MAX).to_bits() as i64,
+            Repr::F32 => f32_bits(value),
+            Repr::F64 => f64_bits(value),
             Repr::Fixed { bits, frac } => {
                 // 2^(bits − 1) and 2^frac are powers of two: exact in f64.
                 let top = pow2(bits - 1);
@@ -58,6 +58,26 @@ impl Repr {
 }
 
 /// `value` within `[−max, max]`: a float backend keeps a finite input finite.
+/// The bits of `value` as an `f32` ([`Repr::bits_of`] for [`Repr::F32`]), for the set-up
+/// of a float factor or state, which knows its representation: a call of `bits_of` there
+/// links all of its arms (776 bytes on the Cortex-M4F for a run-time `f32` value).
+#[inline]
+pub(crate) const fn f32_bits(value: f64) -> i64 {
+    if value.is_nan() {
+        return 0;
+    }
+    (clamp(value, f32::MAX as f64) as f32).to_bits() as i64
+}
+
+/// The bits of `value` as an `f64` ([`Repr::bits_of`] for [`Repr::F64`]).
+#[inline]
+pub(crate) const fn f64_bits(value: f64) -> i64 {
+    if value.is_nan() {
+        return 0;
+    }
+    clamp(value, f64::MAX).to_bits() as i64
+}
+
 const fn clamp(value: f64, max: f64) -> f64 {
     if value > max {
         max

@@ -13,8 +13,6 @@ macro_rules! wide_arithmetic {
         pub(crate) mod $module {
             /// Half the state width, in bits.
             pub(crate) const H: u32 = <$Half>::BITS;
-            /// Mantissas are below this in magnitude.
-            pub(crate) const MANTISSA_LIMIT: $Half = <$Half>::MAX;
 
             /// `x·m / 2^shift`, rounded toward zero (`AWAY = false`) or away from zero
             /// (`AWAY = true`), saturated to the state type. `shift` may be negative (a
@@ -79,24 +77,11 @@ macro_rules! wide_arithmetic {
             /// `(mantissa, shift)` with `value ≈ mantissa / 2^shift` and
             /// `2^(H−2) ≤ |mantissa| < 2^(H−1)`: `H − 1` significant bits. `(0, 0)` for zero,
             /// NaN, infinities and magnitudes beyond what the shift range holds.
+            #[cfg(test)]
             pub(crate) fn encode(value: f64) -> ($Half, i32) {
-                if !value.is_finite() || value == 0.0 {
-                    return (0, 0);
-                }
-                // 2^e ≤ |value| < 2^(e+1), from the exponent field (normal numbers).
-                let e = ((value.abs().to_bits() >> 52) & 0x7ff) as i32 - 1023;
-                let mut shift = (H as i32 - 2) - e;
-                loop {
-                    if !(-(2 * H as i32)..=(6 * H as i32)).contains(&shift) {
-                        return (0, 0);
-                    }
-                    let m = round(value * pow2(shift));
-                    if m.abs() < MANTISSA_LIMIT as f64 {
-                        return (m as $Half, shift);
-                    }
-                    // Rounding carried into the next power of two.
-                    shift -= 1;
-                }
+                // Shared with the set-up computed at compile time.
+                let (m, shift) = crate::scalar::raw_state::encode_mantissa(value, H);
+                (m as $Half, shift)
             }
 
             /// `mantissa / 2^shift` as `f64`.
@@ -107,19 +92,6 @@ macro_rules! wide_arithmetic {
             /// `2^k` as `f64`, for `k` in the normal range.
             fn pow2(k: i32) -> f64 {
                 f64::from_bits(((k + 1023) as u64) << 52)
-            }
-
-            /// Round half away from zero (`f64::round` is not in `core`).
-            fn round(v: f64) -> f64 {
-                let t = v as i128 as f64; // truncates toward zero; exact for |v| < 2^127
-                let frac = v - t;
-                if frac >= 0.5 {
-                    t + 1.0
-                } else if frac <= -0.5 {
-                    t - 1.0
-                } else {
-                    t
-                }
             }
         }
     };

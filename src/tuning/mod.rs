@@ -31,9 +31,11 @@
 mod exact;
 pub mod presets;
 mod settling;
+mod tuned;
 
 pub use exact::Oscillator;
 pub use settling::MAX_SETTLING_STEPS;
+pub use tuned::Tuned;
 
 use crate::error::{Bound, Error, Parameter, check, positive, tri};
 use crate::friction::Friction;
@@ -111,6 +113,16 @@ macro_rules! tuning {
                 ::core::result::Result::Err(_) => {
                     ::core::panic!("invalid tuning: evaluate it at run time to see the Error")
                 }
+            }
+        }
+    };
+    ($tuning:expr, $backend:ty) => {
+        const {
+            match $crate::Tuned::<$backend>::new(&$crate::tuning!($tuning)) {
+                ::core::result::Result::Ok(t) => t,
+                ::core::result::Result::Err(_) => ::core::panic!(
+                    "the backend cannot hold this tuning: evaluate Tuned::new at run time to see the Error"
+                ),
             }
         }
     };
