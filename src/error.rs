@@ -121,6 +121,12 @@ pub enum Parameter {
     /// An angular scene's angular damping rate `c` (per second: a free body's angular
     /// velocity decays as `e^{−c·t}`).
     AngularDamping,
+    /// A rope's stretch under its own weight, as a fraction of its rest length
+    /// ([`Tuning::from_rope_stretch`](crate::Tuning::from_rope_stretch)).
+    Stretch,
+    /// A number of particles (a rope's, for
+    /// [`Tuning::from_rope_stretch`](crate::Tuning::from_rope_stretch)).
+    ParticleCount,
 }
 
 /// The range a rejected number had to lie in.

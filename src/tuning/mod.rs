@@ -30,6 +30,7 @@
 
 mod exact;
 pub mod presets;
+mod rope;
 mod settling;
 mod tuned;
 
