@@ -274,6 +274,58 @@ fn floor_value() -> Option<FloorValue> {
     })
 }
 
+/// One `I16F16` value stepped by hand in the library's own representation (issue 21's
+/// floor): a Q24.40 state in an `i64`, each gain a mantissa `m` of 31 bits with
+/// `C = m/2^(32+k)`, applied as `⌊x·m/2^32⌋` and then `⌊·/2^k⌋` by a long multiply by
+/// `2^(32−k)` (`smull`/`umull` on the Cortex-M4F, where a 64-bit shift by a variable
+/// amount costs more). Plainer than the library: it rounds both products down (the library
+/// rounds the spring's toward zero and the damping's away from it, so that neither drifts)
+/// and tests no range (the library's step tests the state's headroom, and takes its
+/// saturating step outside it). The ratio of the library's `advance` to this is what the
+/// library's code costs over the representation's.
+struct FloorValueQ16 {
+    x: i64,
+    v: i64,
+    k: (i32, i32),
+    d: (i32, i32),
+}
+impl Bench for FloorValueQ16 {
+    #[inline(always)]
+    fn step(&mut self) {
+        let u = self.v.wrapping_sub(floor_product(self.x, self.k));
+        self.x = self.x.wrapping_add(u);
+        self.v = u.wrapping_sub(floor_product(u, self.d));
+    }
+}
+/// `⌊x·m/2^(32+k)⌋` for `(m, 2^(32−k))`: two long multiplies per step of the shift.
+#[inline(always)]
+fn floor_product(x: i64, (m, scale): (i32, i32)) -> i64 {
+    let (xh, xl) = ((x >> 32) as i32, x as u32);
+    let t = xh as i64 * m as i64 + ((xl as u64 * m as u32 as u64) >> 32) as i64;
+    let (th, tl) = ((t >> 32) as i32, t as u32);
+    th as i64 * scale as i64 + ((tl as u64 * scale as u32 as u64) >> 32) as i64
+}
+/// `(m, 2^(32−k))` of `c`, with `2^30 ≤ m < 2^31` and `2 ≤ k ≤ 30`.
+fn floor_gain(c: f64) -> Option<(i32, i32)> {
+    // `no_std`: 2^(32+k) from the exponent field, as the library's own conversions do.
+    let pow2 = |e: i32| f64::from_bits(((1023 + e) as u64) << 52);
+    let mut k = 2;
+    while c * pow2(32 + k) < pow2(30) && k < 30 {
+        k += 1;
+    }
+    let m = c * pow2(32 + k) + 0.5;
+    (m < pow2(31)).then(|| (m as i32, 1 << (32 - k)))
+}
+fn floor_value_q16() -> Option<FloorValueQ16> {
+    let t = tuning()?;
+    Some(FloorValueQ16 {
+        x: -100 << 40,
+        v: 0,
+        k: floor_gain(t.stiffness())?,
+        d: floor_gain(t.damping())?,
+    })
+}
+
 // ---------------------------------------------------------------------------------------
 // Scenes
 // ---------------------------------------------------------------------------------------
@@ -584,6 +636,7 @@ kernels! {
     "batch_step", I16F16 => batch_step::<I16F16>;
     "batch_advance", I16F16 => batch_advance::<I16F16>;
     "floor", I16F16 => floor::<I16F16>;
+    "floor_value", I16F16 => floor_value_q16;
     "value_advance", I32F32 => value_advance::<I32F32>;
     "value_step", I32F32 => value_step::<I32F32>;
     "batch_step", I32F32 => batch_step::<I32F32>;
