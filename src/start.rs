@@ -56,6 +56,8 @@ impl<S: Scalar> Start<S> {
         }
     }
 
+    /// The step velocity `P·x + Q·v` for offset `x` and velocity `v`, or the error that
+    /// says it leaves the state's range.
     pub(crate) fn step_velocity(&self, offset: S::State, velocity: S) -> Result<S::State, Error> {
         self.check(
             self.step_velocity_unchecked(offset, velocity),

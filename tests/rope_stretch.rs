@@ -47,9 +47,13 @@ fn hang<S: Scalar>(
     (1..=n).map(|i| y(i - 1) - y(i)).collect()
 }
 
-/// The statics: link `i` (from 1 at the pin) of a rope of `n` particles.
+/// The statics: link `i` (from 1 at the pin) of a rope of `n` particles, from the `C_k`
+/// the tuning holds (the check of the formula itself is the rope's total length against
+/// the one asked for).
 fn expected(n: usize, link: f64, stretch: f64, i: usize) -> f64 {
-    let ck = n as f64 * G * DT * DT / (stretch * link);
+    let ck = Tuning::from_rope_stretch(n as u32, link, G, stretch, 0.0, DT)
+        .unwrap()
+        .stiffness();
     let weight_over_mass = (n - i + 1) as f64 * G; // T_i / m
     let reduced = if i == 1 { 1.0 } else { 0.5 }; // μ_i / m
     link + weight_over_mass * DT * DT / (ck * reduced)

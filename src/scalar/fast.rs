@@ -100,10 +100,10 @@ macro_rules! no_fast_path {
             };
         }
         impl FastFactor<$M> {
-            /// A factor of no fast form, with the shifts of `C = 0`'s (`k = 2`): unused
-            /// (the headroom of 0 keeps the fast path off), but not zero, so that the
-            /// gains hold no long run of zeros, which LLVM clears with
-            /// `__aeabi_memclr8` (174 bytes on the Cortex-M4F).
+            /// A factor of no fast form. Its shifts are unused (the headroom of 0 keeps
+            /// the fast path off) but not zero (`k = 2` and `32 − 2`, the narrow form of
+            /// `C = 0`'s), so that the gains hold no long run of zeros, which LLVM
+            /// clears with `__aeabi_memclr8` (174 bytes on the Cortex-M4F).
             const NONE: Self = FastFactor {
                 mantissa: 0,
                 bias: 0,

@@ -57,7 +57,6 @@ impl Repr {
     }
 }
 
-/// `value` within `[−max, max]`: a float backend keeps a finite input finite.
 /// The bits of `value` as an `f32` ([`Repr::bits_of`] for [`Repr::F32`]), for the set-up
 /// of a float factor or state, which knows its representation: a call of `bits_of` there
 /// links all of its arms (776 bytes on the Cortex-M4F for a run-time `f32` value).
@@ -78,6 +77,7 @@ pub(crate) const fn f64_bits(value: f64) -> i64 {
     clamp(value, f64::MAX).to_bits() as i64
 }
 
+/// `value` within `[−max, max]`: a float backend keeps a finite input finite.
 const fn clamp(value: f64, max: f64) -> f64 {
     if value > max {
         max

@@ -76,7 +76,11 @@ pub(crate) const fn fixed_state(value: f64, bits: u32, frac: u32) -> i128 {
     }
     // In two factors of at most 2^32 each, as exact powers of two.
     let scaled = value * pow2(frac as i32 - 32) * 4_294_967_296.0;
-    let r = if scaled >= 0.0 {
+    // From 2^52 up an `f64` is an integer already, and adding a half would round (to
+    // even) instead: 2^52 + 1 became 2^52 + 2. Below, `± 0.5` is exact.
+    let r = if scaled >= pow2(52) || scaled <= -pow2(52) {
+        scaled
+    } else if scaled >= 0.0 {
         scaled + 0.5
     } else {
         scaled - 0.5
@@ -242,8 +246,9 @@ mod tests {
     use super::*;
     use fixed::types::{I16F16, I32F32};
 
-    /// Every conversion here is its run-time twin's, bit for bit, ties and ends included.
-    fn agrees<S: Scalar>() {
+    /// The values the conversions are checked on: ends, ties and 2,000 of every sign and
+    /// magnitude from 1e−20 to 1e20.
+    fn values() -> impl Iterator<Item = f64> {
         let listed = [
             0.0,
             -0.0,
@@ -264,32 +269,68 @@ mod tests {
             f64::NEG_INFINITY,
             f64::NAN,
             // Halves of a fixed state's last bit (I16F16: 2^−40), rounded away from zero.
-            2.5 * 2f64.powi(-40),
-            -2.5 * 2f64.powi(-40),
+            2.5 * pow2(-40),
+            -2.5 * pow2(-40),
             // A mantissa that rounds up into the next power of two.
-            1.0 - 2f64.powi(-40),
+            1.0 - pow2(-40),
         ];
-        // And 2,000 of every sign and magnitude from 1e−20 to 1e20.
         let mut x = 0.123_456_789_f64;
         let spread = core::iter::repeat_with(move || {
             x = (x * 7.3 + 0.1) % 1.0;
-            (x - 0.5) * 10f64.powi((x * 40.0) as i32 - 20)
+            (x - 0.5) * libm::pow(10.0, libm::floor(x * 40.0) - 20.0)
         })
         .take(2000);
-        for v in listed.into_iter().chain(spread) {
+        listed.into_iter().chain(spread)
+    }
+
+    /// A float backend's factor and state are [`Scalar::from_f64`] of the value (its own
+    /// conversion: a clamp and a cast), bit for bit.
+    fn floats_agree<S: Scalar>() {
+        for v in values() {
+            let expected = S::from_f64(v);
             assert_eq!(
-                RawFactor::<S>::new(v).get(),
-                S::factor(v),
-                "{} factor {v:e}",
-                S::NAME
+                S::factor_from_const(RawFactor::<S>::new(v).mantissa, 0),
+                S::factor(v)
             );
-            assert_eq!(
-                RawState::<S>::new(v).get(),
-                S::state_from_f64(v),
-                "{} state {v:e}",
-                S::NAME
-            );
+            assert_eq!(RawState::<S>::new(v).get(), S::state_from_f64(v));
+            assert_eq!(S::state_from_f64(v), expected.widen(), "{} {v:e}", S::NAME);
         }
+    }
+
+    #[test]
+    fn a_float_factor_and_state_are_the_floats_conversion() {
+        floats_agree::<f32>();
+        floats_agree::<f64>();
+    }
+
+    /// A fixed-point state is the value rounded half away from zero to the state's last
+    /// bit and saturated at the type's ends, from the definition (`libm::round`), for
+    /// both fixed backends' state formats.
+    #[test]
+    fn a_fixed_state_is_the_value_rounded_to_its_last_bit() {
+        for (bits, frac) in [(64, 40), (128, 64)] {
+            let (min, max) = (i128::MIN >> (128 - bits), i128::MAX >> (128 - bits));
+            for v in values() {
+                let want = if v.is_nan() {
+                    0
+                } else {
+                    let r = libm::round(v * pow2(frac as i32));
+                    if r >= pow2(bits as i32 - 1) {
+                        max
+                    } else if r < -pow2(bits as i32 - 1) {
+                        min
+                    } else {
+                        r as i128
+                    }
+                };
+                assert_eq!(fixed_state(v, bits, frac), want, "{v:e}, Q{bits}.{frac}");
+            }
+        }
+        assert_eq!(RawState::<I16F16>::new(1.0).get(), 1i64 << 40);
+        // An integer from 2^52 up is itself (a half added to it rounded to even).
+        assert_eq!(fixed_state(pow2(52) + 1.0, 64, 0), (1 << 52) + 1);
+        assert_eq!(fixed_state(-(pow2(52) + 1.0), 64, 0), -(1 << 52) - 1);
+        assert_eq!(RawState::<I32F32>::new(-1.0).get(), -(1i128 << 64));
     }
 
     /// A mantissa is the value rounded half away from zero to `h − 1` significant bits,
@@ -299,19 +340,16 @@ mod tests {
         let mut x = 0.314_159_f64;
         for _ in 0..5000 {
             x = (x * 9.7 + 0.3) % 1.0;
-            let v = (x - 0.5) * 10f64.powi((x * 24.0) as i32 - 12);
+            let v = (x - 0.5) * libm::pow(10.0, libm::floor(x * 24.0) - 12.0);
             for h in [32, 64] {
                 let (m, s) = encode_mantissa(v, h);
-                let (lo, hi) = (2f64.powi(h as i32 - 2), 2f64.powi(h as i32 - 1));
+                let (lo, hi) = (pow2(h as i32 - 2), pow2(h as i32 - 1));
                 let size = (m as f64).abs();
                 assert!(size >= lo && size < hi, "{v:e}, h {h}: {m}");
-                let step = 2f64.powi(-s);
+                let step = pow2(-s);
                 // In exact arithmetic: m − v·2^s is computed exactly for h = 32.
                 if h == 32 {
-                    assert!(
-                        (m as f64 - v * 2f64.powi(s)).abs() <= 0.5,
-                        "{v:e}: {m}, {s}"
-                    );
+                    assert!((m as f64 - v * pow2(s)).abs() <= 0.5, "{v:e}: {m}, {s}");
                 }
                 assert!(
                     (m as f64 * step - v).abs() <= 0.5 * step * (1.0 + 1e-12),
@@ -322,13 +360,5 @@ mod tests {
         assert_eq!(encode_mantissa(0.0, 32), (0, 0));
         assert_eq!(encode_mantissa(f64::NAN, 32), (0, 0));
         assert_eq!(encode_mantissa(1e300, 32), (0, 0));
-    }
-
-    #[test]
-    fn const_conversions_are_the_run_time_ones() {
-        agrees::<f32>();
-        agrees::<f64>();
-        agrees::<I16F16>();
-        agrees::<I32F32>();
     }
 }

@@ -105,6 +105,25 @@ pub struct Tuning {
 /// use stiffspring::{tuning, Tuning};
 /// const BAD: Tuning = tuning!(Tuning::from_coefficients(2.0, 0.5, 0.01)); // C_k > 1
 /// ```
+///
+/// With a backend, `tuning!(expr, S)` also converts the tuning to that backend's numbers
+/// ([`Tuned`]), for [`SpringValue::from_tuned`](crate::SpringValue::from_tuned); a tuning
+/// the backend cannot hold is a compile error too.
+///
+/// ```
+/// use stiffspring::{I16F16, SpringValue, Tuned, Tuning, tuning};
+///
+/// const UI: Tuned<I16F16> = tuning!(Tuning::from_frequency(3.0, 0.8, 1.0 / 60.0), I16F16);
+/// let v = SpringValue::from_tuned([I16F16::from_num(12)], &UI)?;
+/// assert_eq!(v.position(), [I16F16::from_num(12)]);
+/// # Ok::<(), stiffspring::Error>(())
+/// ```
+///
+/// ```compile_fail
+/// use stiffspring::{I16F16, Tuned, Tuning, tuning};
+/// // A 0.1 Hz spring at 10 kHz: C_k = 3.9e−9, below the least gain I16F16 holds.
+/// const SLOW: Tuned<I16F16> = tuning!(Tuning::from_frequency(0.1, 0.5, 1e-4), I16F16);
+/// ```
 #[macro_export]
 macro_rules! tuning {
     ($tuning:expr) => {

@@ -18,8 +18,9 @@ impl Tuning {
     /// At rest every link carries the weight of the particles below it. A spring's
     /// stiffness is `C_k·μ/dt²` with `μ` its two ends' reduced mass (eq. 20 of the
     /// article): `m` for the link to the pin, `m/2` between two particles of mass `m`. So
-    /// the link to the pin stretches by `N·m·g/(C_k·m/dt²) = N·g·dt²/C_k`, the `i`-th
-    /// below it by `2·(N − i + 1)·g·dt²/C_k`, and the whole rope by `N²·g·dt²/C_k`: a
+    /// link 1 (to the pin) stretches by `N·m·g/(C_k·m/dt²) = N·g·dt²/C_k`, link `i ≥ 2`
+    /// (counted from the pin) by `2·(N − i + 1)·g·dt²/C_k`, and the whole rope by
+    /// `N²·g·dt²/C_k`: a
     /// fraction `N·g·dt²/(C_k·link)` of its length `N·link`, whatever the mass.
     ///
     /// A scene's rope at rest hangs exactly so (`tests/rope_stretch.rs`, against the

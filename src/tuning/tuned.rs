@@ -10,8 +10,9 @@ use crate::tuning::Tuning;
 /// A [`Tuning`] converted to backend `S`: the gains as `S` stores them (in fixed point a
 /// mantissa and a shift), the start weights and the default rest band, computed by a
 /// `const fn`. Made by [`tuning!`](crate::tuning!) with a backend, a `Tuned` is computed
-/// by the compiler, and [`SpringValue::from_tuned`](crate::SpringValue::from_tuned) only
-/// copies it: an `I16F16` firmware links no `f64` arithmetic and no float-to-fixed
+/// by the compiler, and [`SpringValue::from_tuned`](crate::SpringValue::from_tuned) takes
+/// its numbers as they are (in fixed point it derives the fast step's form of the gains,
+/// in integers): an `I16F16` firmware links no `f64` arithmetic and no float-to-fixed
 /// conversion for its values' set-up (`docs/firmware.md`, the flash table).
 ///
 /// The value it starts is the one [`SpringValue::new`](crate::SpringValue::new) builds
@@ -48,7 +49,8 @@ impl<S: Scalar> Tuned<S> {
     /// ```
     /// use stiffspring::{I16F16, Tuned, Tuning};
     ///
-    /// // A 0.1 Hz spring at 10 kHz: C_k = 3.9e−9 is below I16F16's resolution.
+    /// // A 0.1 Hz spring at 10 kHz: C_k = 3.9e−9 is below the least gain I16F16 holds,
+    /// // 2⁻²⁴ (its state's last bit over a position's).
     /// let slow = Tuning::from_frequency(0.1, 0.5, 1e-4)?;
     /// assert!(Tuned::<I16F16>::new(&slow).is_err());
     /// assert!(Tuned::<f32>::new(&slow).is_ok());
@@ -126,6 +128,35 @@ mod tests {
         compiled_as_run!(Tuning::from_frequency(40.0, 0.2, 1e-4));
         compiled_as_run!(Tuning::from_frequency(12.0, 10.0, 1.0 / 60.0));
         compiled_as_run!(presets::swiftui::BOUNCY.tuning(1.0 / 120.0));
+    }
+
+    /// A value from a `Tuned` is the value `SpringValue::new` builds at run time (which
+    /// runs `gains_of`, `Start::new` and `RestBand::new`, not `Tuned::new`), field by
+    /// field: their `Debug` prints every field, bits included.
+    #[test]
+    fn a_value_from_a_tuned_is_new_s_value() {
+        fn same<S: Scalar>(t: &Tuning, at: f64) {
+            let p = [S::from_f64(at)];
+            let new = crate::SpringValue::<S, 1>::new(p, t).unwrap();
+            let tuned = crate::SpringValue::<S, 1>::from_tuned(p, &Tuned::new(t).unwrap()).unwrap();
+            let print = |v: &crate::SpringValue<S, 1>| {
+                let mut text = heapless::String::<4096>::new();
+                core::fmt::Write::write_fmt(&mut text, format_args!("{v:?}")).unwrap();
+                text
+            };
+            assert_eq!(print(&new), print(&tuned), "{}", S::NAME);
+        }
+        for t in [
+            Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0).unwrap(),
+            Tuning::from_frequency(2.0, 0.7, 1.0 / 120.0).unwrap(),
+            Tuning::from_frequency(40.0, 0.2, 1e-4).unwrap(),
+            Tuning::from_frequency(12.0, 10.0, 1.0 / 60.0).unwrap(),
+        ] {
+            same::<f32>(&t, 3.25);
+            same::<f64>(&t, 3.25);
+            same::<I16F16>(&t, 3.25);
+            same::<I32F32>(&t, -7.5);
+        }
     }
 
     /// What a backend refuses, `Tuned::new` refuses with the error `SpringValue::new`
