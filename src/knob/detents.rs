@@ -262,12 +262,23 @@ impl<S: Scalar> Ladder<S> {
     /// `Knob::update` on the Cortex-M4F, `scripts/size-report`).
     #[inline(always)]
     pub(crate) fn update(&mut self, angle: S) -> i8 {
-        let e = angle.sub(self.centre);
-        if (e > self.threshold && self.index < self.max_index)
-            || (e < self.neg_threshold && self.index > self.min_index)
-        {
+        if self.direction(angle) != 0 {
             // At most MAX_WALK (4) detents: the sum fits an i8.
             self.walk(angle, MAX_WALK) as i8
+        } else {
+            0
+        }
+    }
+
+    /// Which way `angle` takes the index: 1 up, −1 down, 0 for none (within the
+    /// switching threshold of the centre, or at the end of the range).
+    #[inline(always)]
+    fn direction(&self, angle: S) -> i32 {
+        let e = angle.sub(self.centre);
+        if e > self.threshold && self.index < self.max_index {
+            1
+        } else if e < self.neg_threshold && self.index > self.min_index {
+            -1
         } else {
             0
         }
@@ -280,16 +291,13 @@ impl<S: Scalar> Ladder<S> {
     fn walk(&mut self, angle: S, limit: usize) -> i32 {
         let mut moved = 0i32;
         for _ in 0..limit {
-            let e = angle.sub(self.centre);
-            if e > self.threshold && self.index < self.max_index {
-                self.up();
-                moved += 1;
-            } else if e < self.neg_threshold && self.index > self.min_index {
-                self.down();
-                moved -= 1;
-            } else {
-                break;
+            let d = self.direction(angle);
+            match d {
+                1 => self.up(),
+                -1 => self.down(),
+                _ => break,
             }
+            moved += d;
         }
         moved
     }

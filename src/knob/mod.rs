@@ -267,8 +267,8 @@ pub struct Knob<S: Scalar> {
     candidate: S,
     candidate_step: S,
     /// `1/FADE_PERIODS`, the fade's step, and while fading in the fraction of the
-    /// torque given (the fade's steps so far times the step: kept as it is summed, so
-    /// that the cold path has no loop).
+    /// torque given (the fade's steps so far times the step), whose reaching 1 ends the
+    /// fade.
     fade_unit: S,
     fade: S,
     /// After a reconfiguration: the old layout's torque less the new one's, and the most
@@ -709,14 +709,14 @@ impl<S: Scalar> Knob<S> {
             }
             // A good reading of a rotor turning too fast for the configured maximum
             // speed, in step with the one before: the torque goes off at once.
-            (Mode::Tracking | Mode::Fading { .. } | Mode::Blending, None)
+            (Mode::Tracking | Mode::Fading | Mode::Blending, None)
                 if !fits(self.max_step, step) && fits(self.jolt, step.sub(self.last_step)) =>
             {
                 self.lose(angle, step, 2);
                 self.fault_output(Some(SensorFault::TooFast), S::ZERO)
             }
             // The first bad reading: hold the last torque.
-            (Mode::Tracking | Mode::Fading { .. } | Mode::Blending, _) => {
+            (Mode::Tracking | Mode::Fading | Mode::Blending, _) => {
                 self.mode = Mode::Holding { missed: 1 };
                 self.gate = S::ONE.neg();
                 // A reconfiguration's blend ends here: the torque fades in from zero
@@ -824,7 +824,7 @@ impl<S: Scalar> Knob<S> {
         let beyond = self.beyond_at(angle);
         let hit = if beyond != self.beyond { beyond } else { None };
         self.beyond = beyond;
-        self.mode = Mode::Fading { step: 0 };
+        self.mode = Mode::Fading;
         self.fade = S::ZERO;
         // The hot path takes the readings again; `ease` fades the torque in.
         self.gate = self.jolt;
@@ -873,15 +873,12 @@ impl<S: Scalar> Knob<S> {
     #[inline(never)]
     fn ease(&mut self, torque: S) -> S {
         match self.mode {
-            // Taken up again: the torque times `n/FADE_PERIODS`.
-            Mode::Fading { step: n } => {
-                let n = n + 1;
+            // Taken up again: the torque times `n/FADE_PERIODS` in the `n`-th period.
+            Mode::Fading => {
                 self.fade = self.fade.add(self.fade_unit);
-                self.mode = if n >= screen::FADE_PERIODS {
-                    Mode::Tracking
-                } else {
-                    Mode::Fading { step: n }
-                };
+                if self.fade >= S::ONE {
+                    self.mode = Mode::Tracking;
+                }
                 torque.mul(self.fade)
             }
             // Reconfigured: the old torque's offset moved toward zero by one count's

@@ -91,10 +91,7 @@ impl<S: Scalar> Knob<S> {
                 next.mode = Mode::Blending;
             }
         }
-        next.gate = if matches!(
-            next.mode,
-            Mode::Tracking | Mode::Blending | Mode::Fading { .. }
-        ) {
+        next.gate = if matches!(next.mode, Mode::Tracking | Mode::Blending | Mode::Fading) {
             next.jolt
         } else {
             S::ONE.neg()

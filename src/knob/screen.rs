@@ -49,8 +49,10 @@ pub(crate) enum Mode {
     Holding { missed: u8 },
     /// The readings are not trusted; `agree` readings in a row agree so far.
     Lost { agree: u8 },
-    /// Taken up again: the torque is multiplied by `step/FADE_PERIODS`.
-    Fading { step: u8 },
+    /// Taken up again: the torque is multiplied by the fade (`Knob::fade`), which rises by
+    /// `1/FADE_PERIODS` a period and ends the fade at 1 (exactly: `1/FADE_PERIODS` is a
+    /// power of two, whose sums every backend holds without rounding).
+    Fading,
     /// Reconfigured: the torque carries an offset from the old layout's, which moves to
     /// zero by at most one count's torque per period.
     Blending,

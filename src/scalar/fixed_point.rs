@@ -16,7 +16,7 @@
 use super::fast::{FastGains, broad_step, narrow_step};
 use super::raw_state::{encode_mantissa, fixed_state};
 use super::wide::{broad, narrow};
-use super::{Form, RawGains, Repr, Scalar, Sealed};
+use super::{FactorForm, RawGains, Repr, Scalar, Sealed, StateForm};
 use fixed::types::{I3F29, I3F61, I16F16, I32F32};
 
 /// The gains `(C_k, C_d)` of a spring in a fixed-point backend: each a mantissa and an
@@ -253,10 +253,10 @@ macro_rules! fixed_backend {
             fn from_const_bits(bits: i64) -> Self {
                 <$S>::from_bits(bits as $Bits)
             }
-            const FACTOR_FORM: Form = Form::Mantissa {
+            const FACTOR_FORM: FactorForm = FactorForm::Mantissa {
                 bits: <$Half>::BITS,
             };
-            const STATE_FORM: Form = Form::Fixed {
+            const STATE_FORM: StateForm = StateForm::Fixed {
                 bits: <$State>::BITS,
                 frac: <$S>::FRAC_NBITS + $guard,
             };

@@ -1,6 +1,6 @@
 //! `f32` and `f64`: plain IEEE arithmetic; the state and the gains in the same format.
 
-use super::{Form, RawGains, Repr, Scalar, Sealed};
+use super::{FactorForm, RawGains, Repr, Scalar, Sealed, StateForm};
 
 /// The gains `(C_k, C_d)` of a spring in a float backend.
 ///
@@ -164,8 +164,8 @@ macro_rules! float_backend {
                 Repr::F64
             };
             const COEF_REPR: Repr = <Self as Scalar>::REPR;
-            const FACTOR_FORM: Form = Form::Float(<Self as Scalar>::REPR);
-            const STATE_FORM: Form = Form::Float(<Self as Scalar>::REPR);
+            const FACTOR_FORM: FactorForm = FactorForm::Float(<Self as Scalar>::REPR);
+            const STATE_FORM: StateForm = StateForm::Float(<Self as Scalar>::REPR);
             const LEAST_GAIN: f64 = $min_gain as f64;
             #[inline]
             fn factor_from_const(mantissa: i64, _shift: i32) -> Self::Factor {

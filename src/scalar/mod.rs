@@ -15,7 +15,7 @@ mod wide;
 pub use raw::Repr;
 #[allow(unused_imports)]
 pub(crate) use raw::{Raw, RawCoef};
-pub use raw_state::Form;
+pub use raw_state::{FactorForm, StateForm};
 pub(crate) use raw_state::{RawFactor, RawGains, RawState};
 
 #[cfg(feature = "fixed")]
@@ -267,10 +267,10 @@ pub trait Scalar:
     fn coef_from_const_bits(bits: i64) -> Self::Coef;
     /// How [`Self::Factor`] stores a number (set-up only).
     #[doc(hidden)]
-    const FACTOR_FORM: Form;
+    const FACTOR_FORM: FactorForm;
     /// How [`Self::State`] stores a number (set-up only).
     #[doc(hidden)]
-    const STATE_FORM: Form;
+    const STATE_FORM: StateForm;
     /// The smallest gain the backend holds: in a float the smallest normal number (a
     /// subnormal gain loses its relative precision); in fixed point the state's last bit
     /// over a position's (below it, the spring's dead band is wider than a position's

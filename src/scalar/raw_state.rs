@@ -14,10 +14,10 @@ use super::raw::{f32_bits, f64_bits};
 use super::{Repr, Scalar};
 use core::marker::PhantomData;
 
-/// How a backend stores a factor or a state (set-up only).
+/// How a backend stores a factor (set-up only).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[doc(hidden)]
-pub enum Form {
+pub enum FactorForm {
     /// The float of this representation.
     Float(Repr),
     /// A mantissa of `bits` bits, sign included, and a shift: `value ≈ mantissa/2^shift`
@@ -26,6 +26,14 @@ pub enum Form {
         /// The mantissa's width.
         bits: u32,
     },
+}
+
+/// How a backend stores a state (set-up only).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[doc(hidden)]
+pub enum StateForm {
+    /// The float of this representation.
+    Float(Repr),
     /// An integer of `bits` bits with `frac` fractional bits ([`fixed_state`]).
     Fixed {
         /// The integer's width.
@@ -131,10 +139,9 @@ impl<S: Scalar> RawFactor<S> {
     /// What [`Scalar::factor`] gives for `value`.
     pub(crate) const fn new(value: f64) -> Self {
         let (mantissa, shift) = match S::FACTOR_FORM {
-            Form::Float(Repr::F32) => (f32_bits(value), 0),
-            Form::Float(_) => (f64_bits(value), 0),
-            Form::Mantissa { bits } => encode_mantissa(value, bits),
-            Form::Fixed { .. } => (0, 0),
+            FactorForm::Float(Repr::F32) => (f32_bits(value), 0),
+            FactorForm::Float(_) => (f64_bits(value), 0),
+            FactorForm::Mantissa { bits } => encode_mantissa(value, bits),
         };
         RawFactor {
             mantissa,
@@ -146,9 +153,9 @@ impl<S: Scalar> RawFactor<S> {
     /// The factor, as `f64`: exactly what it stores.
     pub(crate) const fn to_f64(self) -> f64 {
         match S::FACTOR_FORM {
-            Form::Float(Repr::F32) => f32::from_bits(self.mantissa as u32) as f64,
-            Form::Float(_) => f64::from_bits(self.mantissa as u64),
-            _ => self.mantissa as f64 * pow2(-self.shift),
+            FactorForm::Float(Repr::F32) => f32::from_bits(self.mantissa as u32) as f64,
+            FactorForm::Float(_) => f64::from_bits(self.mantissa as u64),
+            FactorForm::Mantissa { .. } => self.mantissa as f64 * pow2(-self.shift),
         }
     }
 
@@ -176,10 +183,9 @@ impl<S: Scalar> RawState<S> {
     /// What [`Scalar::state_from_f64`] gives for `value`.
     pub(crate) const fn new(value: f64) -> Self {
         let bits = match S::STATE_FORM {
-            Form::Float(Repr::F32) => f32_bits(value) as i128,
-            Form::Float(_) => f64_bits(value) as i128,
-            Form::Fixed { bits, frac } => fixed_state(value, bits, frac),
-            Form::Mantissa { .. } => 0,
+            StateForm::Float(Repr::F32) => f32_bits(value) as i128,
+            StateForm::Float(_) => f64_bits(value) as i128,
+            StateForm::Fixed { bits, frac } => fixed_state(value, bits, frac),
         };
         RawState {
             bits,
@@ -212,14 +218,14 @@ impl<S: Scalar> RawGains<S> {
         let lost = match S::FACTOR_FORM {
             // A gain that becomes subnormal loses its relative precision, one that
             // becomes zero its effect: neither is the tuning that was asked for.
-            Form::Float(_) => {
+            FactorForm::Float(_) => {
                 (stiffness != 0.0 && k.to_f64().abs() < S::LEAST_GAIN)
                     || (damping != 0.0 && d.to_f64().abs() < S::LEAST_GAIN)
             }
             // The spring stops for good within |x| < 1/C_k last bits of the state: below
             // the least gain that dead band is wider than a position's last bit. A gain
             // beyond the mantissa's range encodes as zero.
-            _ => {
+            FactorForm::Mantissa { .. } => {
                 (stiffness != 0.0 && (stiffness.abs() < S::LEAST_GAIN || k.is_zero()))
                     || (damping != 0.0 && d.is_zero())
             }

@@ -74,16 +74,6 @@ macro_rules! wide_arithmetic {
                 }
             }
 
-            /// `(mantissa, shift)` with `value ≈ mantissa / 2^shift` and
-            /// `2^(H−2) ≤ |mantissa| < 2^(H−1)`: `H − 1` significant bits. `(0, 0)` for zero,
-            /// NaN, infinities and magnitudes beyond what the shift range holds.
-            #[cfg(test)]
-            pub(crate) fn encode(value: f64) -> ($Half, i32) {
-                // Shared with the set-up computed at compile time.
-                let (m, shift) = crate::scalar::raw_state::encode_mantissa(value, H);
-                (m as $Half, shift)
-            }
-
             /// `mantissa / 2^shift` as `f64`.
             pub(crate) fn decode(mantissa: $Half, shift: i32) -> f64 {
                 mantissa as f64 * pow2(-shift)
@@ -103,6 +93,7 @@ wide_arithmetic!(broad, i64, u64, i128, u128);
 #[cfg(test)]
 mod tests {
     use super::super::fast::{FastGains, broad_step, mode, narrow_step};
+    use super::super::raw_state::encode_mantissa;
     use super::*;
 
     /// The exact quotient, toward zero or away from it, on i128 (the products fit).
@@ -359,18 +350,19 @@ mod tests {
     #[test]
     fn encoding_keeps_thirty_one_bits() {
         for v in [3.9e-7, 1.0, 3.999, 0.1, 1e-12, 2.5e6, -0.75] {
-            let (m, s) = narrow::encode(v);
+            let (m, s) = encode_mantissa(v, 32);
+            let m = m as i32;
             assert!(
                 ((narrow::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-30),
                 "{v}"
             );
-            let (m, s) = broad::encode(v);
+            let (m, s) = encode_mantissa(v, 64);
             assert!(
                 ((broad::decode(m, s) - v) / v).abs() <= 2.0f64.powi(-62),
                 "{v}"
             );
         }
-        assert_eq!(narrow::encode(0.0), (0, 0));
-        assert_eq!(narrow::encode(f64::NAN), (0, 0));
+        assert_eq!(encode_mantissa(0.0, 32), (0, 0));
+        assert_eq!(encode_mantissa(f64::NAN, 32), (0, 0));
     }
 }
