@@ -82,7 +82,7 @@ macro_rules! fixed_backend {
     (
         $S:ty, $Bits:ty, $State:ty, $StateU:ty, $Half:ty, $Coef:ty, $Wide:ty,
         $arith:ident, $narrow:ident, $narrow_self:ident, $guard:expr, $name:literal,
-        $fast:expr, $fast_step:expr
+        $fast:expr, $fast_step:expr, $mul:path
     ) => {
         impl Sealed for $S {}
 
@@ -303,18 +303,15 @@ macro_rules! fixed_backend {
             }
             #[inline(always)]
             fn mul(self, rhs: Self) -> Self {
-                <$S>::from_bits($narrow_self(
-                    self.to_bits() as $Wide * rhs.to_bits() as $Wide,
-                ))
+                <$S>::from_bits($narrow_self($mul(self.to_bits(), rhs.to_bits())))
             }
             #[inline(always)]
             fn mul_coef(self, coef: Self::Coef) -> Self {
-                <$S>::from_bits($narrow(self.to_bits() as $Wide * coef.to_bits() as $Wide))
+                <$S>::from_bits($narrow($mul(self.to_bits(), coef.to_bits())))
             }
             #[inline(always)]
             fn mul_coef_diff(a: Self, ca: Self::Coef, b: Self, cb: Self::Coef) -> Self {
-                let p = a.to_bits() as $Wide * ca.to_bits() as $Wide
-                    - b.to_bits() as $Wide * cb.to_bits() as $Wide;
+                let p = $mul(a.to_bits(), ca.to_bits()) - $mul(b.to_bits(), cb.to_bits());
                 <$S>::from_bits($narrow(p))
             }
             #[inline(always)]
@@ -323,7 +320,7 @@ macro_rules! fixed_backend {
                 // 2^(2·BITS−2)); for larger D the sum saturates instead of wrapping.
                 let mut sum: $Wide = 0;
                 for k in 0..D {
-                    sum = sum.saturating_add(a[k].to_bits() as $Wide * b[k].to_bits() as $Wide);
+                    sum = sum.saturating_add($mul(a[k].to_bits(), b[k].to_bits()));
                 }
                 <$S>::from_bits($narrow_self(sum))
             }
@@ -488,7 +485,8 @@ fixed_backend!(
     |k: FixedFactor<i32>, d: FixedFactor<i32>| {
         FastGains::narrow((k.mantissa, k.shift), (d.mantissa, d.shift))
     },
-    narrow_step::advance
+    narrow_step::advance,
+    super::widening::mul_i32
 );
 fixed_backend!(
     I32F32,
@@ -506,7 +504,8 @@ fixed_backend!(
     |k: FixedFactor<i64>, d: FixedFactor<i64>| {
         FastGains::broad((k.mantissa, k.shift), (d.mantissa, d.shift))
     },
-    broad_step::advance
+    broad_step::advance,
+    super::widening::mul_i64
 );
 
 #[cfg(test)]

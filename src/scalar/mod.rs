@@ -10,6 +10,8 @@ mod raw;
 mod raw_state;
 #[cfg(feature = "fixed")]
 mod wide;
+#[cfg(feature = "fixed")]
+mod widening;
 
 #[doc(hidden)]
 pub use raw::Repr;

@@ -9,7 +9,9 @@
 //! `smull`/`umull`; on a Cortex-M0 a library multiply.
 
 macro_rules! wide_arithmetic {
-    ($module:ident, $Half:ty, $HalfU:ty, $Full:ty, $FullU:ty) => {
+    (
+        $module:ident, $Half:ty, $HalfU:ty, $Full:ty, $FullU:ty, $mul:path, $mul_unsigned:path
+    ) => {
         pub(crate) mod $module {
             /// Half the state width, in bits.
             pub(crate) const H: u32 = <$Half>::BITS;
@@ -20,8 +22,8 @@ macro_rules! wide_arithmetic {
             #[inline(always)]
             pub(crate) fn mul_shift<const AWAY: bool>(x: $Full, m: $Half, shift: i32) -> $Full {
                 let (xh, xl) = ((x >> H) as $Half, x as $HalfU);
-                let high = xh as $Full * m as $Full;
-                let low = xl as $Full * m as $Full;
+                let high = $mul(xh, m);
+                let low = $mul_unsigned(xl, m);
                 let t = high + (low >> H);
                 let r = (low as $FullU) & (<$HalfU>::MAX as $FullU);
                 let negative = t < 0;
@@ -87,8 +89,24 @@ macro_rules! wide_arithmetic {
     };
 }
 
-wide_arithmetic!(narrow, i32, u32, i64, u64);
-wide_arithmetic!(broad, i64, u64, i128, u128);
+wide_arithmetic!(
+    narrow,
+    i32,
+    u32,
+    i64,
+    u64,
+    crate::scalar::widening::mul_i32,
+    crate::scalar::widening::mul_u32_i32
+);
+wide_arithmetic!(
+    broad,
+    i64,
+    u64,
+    i128,
+    u128,
+    crate::scalar::widening::mul_i64,
+    crate::scalar::widening::mul_u64_i64
+);
 
 #[cfg(test)]
 mod tests {
