@@ -276,18 +276,17 @@ fn floor_value() -> Option<FloorValue> {
 
 /// One `I16F16` value stepped by hand in the library's own representation (issue 21's
 /// floor): a Q24.40 state in an `i64`, each gain a mantissa `m` of 31 bits with
-/// `C = m/2^(32+k)`, applied as `⌊x·m/2^32⌋` and then `⌊·/2^k⌋` by a long multiply by
-/// `2^(32−k)` (`smull`/`umull` on the Cortex-M4F, where a 64-bit shift by a variable
-/// amount costs more). Plainer than the library: it rounds both products down (the library
-/// rounds the spring's toward zero and the damping's away from it, so that neither drifts)
-/// and tests no range (the library's step tests the state's headroom, and takes its
-/// saturating step outside it). The ratio of the library's `advance` to this is what the
-/// library's code costs over the representation's.
+/// `C = m/2^(32+k)`, applied as `⌊x·m/2^32⌋` and then `⌊·/2^k⌋`. Plainer than the
+/// library: it rounds both products down (the library rounds the spring's toward zero and
+/// the damping's away from it, so that neither drifts) and tests no range (the library's
+/// step tests the state's headroom, and takes its saturating step outside it). The ratio
+/// of the library's `advance` to this is what the library's code costs over the
+/// representation's. Each core gets the arithmetic that is cheapest on it (`FloorGain`).
 struct FloorValueQ16 {
     x: i64,
     v: i64,
-    k: (i32, i32),
-    d: (i32, i32),
+    k: FloorGain,
+    d: FloorGain,
 }
 impl Bench for FloorValueQ16 {
     #[inline(always)]
@@ -297,16 +296,41 @@ impl Bench for FloorValueQ16 {
         self.v = u.wrapping_sub(floor_product(u, self.d));
     }
 }
-/// `⌊x·m/2^(32+k)⌋` for `(m, 2^(32−k))`: two long multiplies per step of the shift.
+/// A gain of the hand floor: `(m, 2^(32−k))` where the core has a long multiply (the
+/// shift by `k` as a multiply: `smull`/`umull` on the Cortex-M4F, where a 64-bit shift by
+/// a variable amount costs more), `(m, k)` on a Cortex-M0.
+type FloorGain = (i32, i32);
+/// `⌊x·m/2^(32+k)⌋`: two long multiplies per step of the shift.
+#[cfg(not(no_long_multiply))]
 #[inline(always)]
-fn floor_product(x: i64, (m, scale): (i32, i32)) -> i64 {
+fn floor_product(x: i64, (m, scale): FloorGain) -> i64 {
     let (xh, xl) = ((x >> 32) as i32, x as u32);
     let t = xh as i64 * m as i64 + ((xl as u64 * m as u32 as u64) >> 32) as i64;
     let (th, tl) = ((t >> 32) as i32, t as u32);
     th as i64 * scale as i64 + ((tl as u64 * scale as u32 as u64) >> 32) as i64
 }
-/// `(m, 2^(32−k))` of `c`, with `2^30 ≤ m < 2^31` and `2 ≤ k ≤ 30`.
-fn floor_gain(c: f64) -> Option<(i32, i32)> {
+/// `⌊x·m/2^(32+k)⌋` on a Cortex-M0, whose `muls` keeps the low 32 bits of a product: `x·m`
+/// from the eight products of `x`'s four 16-bit pieces and `m`'s two (the top piece of
+/// `x` signed), then the shift by `k` as two 32-bit shifts. `m < 2³¹`, so each product
+/// fits 32 bits (`|x₃·m₁| < 2³⁰`).
+#[cfg(no_long_multiply)]
+#[inline(always)]
+fn floor_product(x: i64, (m, k): FloorGain) -> i64 {
+    let (m0, m1) = ((m & 0xffff) as u32, (m >> 16) as u32);
+    let (x0, x1) = (x as u32 & 0xffff, (x as u32) >> 16);
+    let (x2, x3) = ((x >> 32) as u32 & 0xffff, (x >> 48) as i32);
+    // x·m = Σ xᵢ·mⱼ·2^(16(i+j)); ⌊x·m/2^32⌋ needs the low word's carry only.
+    let low = (x0 * m0) as u64 + (((x1 * m0) as u64 + (x0 * m1) as u64) << 16);
+    let mid = (x1 * m1) as u64 + (x2 * m0) as u64 + (low >> 32);
+    let t = (((x3 * m1 as i32) as i64) << 32)
+        + ((((x3 * m0 as i32) as i64) + (x2 * m1) as i64) << 16)
+        + mid as i64;
+    let (th, tl) = ((t >> 32) as i32, t as u32);
+    let ql = (tl >> k) | ((th as u32) << (32 - k));
+    (((th >> k) as i64) << 32) | ql as i64
+}
+/// The [`FloorGain`] of `c`, with `2^30 ≤ m < 2^31` and `2 ≤ k ≤ 30`.
+fn floor_gain(c: f64) -> Option<FloorGain> {
     // `no_std`: 2^(32+k) from the exponent field, as the library's own conversions do.
     let pow2 = |e: i32| f64::from_bits(((1023 + e) as u64) << 52);
     let mut k = 2;
@@ -314,7 +338,8 @@ fn floor_gain(c: f64) -> Option<(i32, i32)> {
         k += 1;
     }
     let m = c * pow2(32 + k) + 0.5;
-    (m < pow2(31)).then(|| (m as i32, 1 << (32 - k)))
+    let second = if cfg!(no_long_multiply) { k } else { 1 << (32 - k) };
+    (m < pow2(31)).then(|| (m as i32, second))
 }
 fn floor_value_q16() -> Option<FloorValueQ16> {
     let t = tuning()?;
