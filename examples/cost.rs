@@ -338,8 +338,12 @@ fn floor_gain(c: f64) -> Option<FloorGain> {
         k += 1;
     }
     let m = c * pow2(32 + k) + 0.5;
-    let second = if cfg!(no_long_multiply) { k } else { 1 << (32 - k) };
-    (m < pow2(31)).then(|| (m as i32, second))
+    let second = if cfg!(no_long_multiply) {
+        k
+    } else {
+        1 << (32 - k)
+    };
+    (m < pow2(31)).then_some((m as i32, second))
 }
 fn floor_value_q16() -> Option<FloorValueQ16> {
     let t = tuning()?;
