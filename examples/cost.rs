@@ -105,6 +105,22 @@ fn moving_value<S: Scalar>() -> Option<SpringValue<S, 1>> {
     Some(v)
 }
 
+/// A UI value at 60 Hz, moving: `C_k = 0.05` and `C_d = 0.3` (a 2.1 Hz spring at
+/// ζ ≈ 0.67), whose damping is above the fixed-point fast path's `2⁻³`.
+fn moving_ui_value<S: Scalar>() -> Option<SpringValue<S, 1>> {
+    let tuning = Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0).ok()?;
+    let mut v = SpringValue::new([S::ZERO], &tuning)
+        .ok()?
+        .with_rest_threshold(never()?);
+    v.try_set_target([S::from_f64(100.0)]).ok()?;
+    Some(v)
+}
+
+/// `SpringValue::<S, 1>::step` of [`moving_ui_value`].
+fn ui_value_step<S: Scalar>() -> Option<ValueStep<S>> {
+    Some(ValueStep(moving_ui_value()?))
+}
+
 /// `SpringValue::<S, 1>::advance`: the spring alone, no rest test.
 struct ValueAdvance<S: Scalar>(SpringValue<S, 1>);
 impl<S: Scalar> Bench for ValueAdvance<S> {
@@ -662,6 +678,8 @@ kernels! {
     "floor", f32 => floor::<f32>;
     "value_advance", I16F16 => value_advance::<I16F16>;
     "value_step", I16F16 => value_step::<I16F16>;
+    "ui_value_step", f32 => ui_value_step::<f32>;
+    "ui_value_step", I16F16 => ui_value_step::<I16F16>;
     "batch_step", I16F16 => batch_step::<I16F16>;
     "batch_advance", I16F16 => batch_advance::<I16F16>;
     "floor", I16F16 => floor::<I16F16>;
