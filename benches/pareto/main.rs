@@ -16,7 +16,9 @@
 //! `scene,implementation,backend,step_hz,ns_per_step,max_rel_error`),
 //! `target/pareto/pareto.svg` (error against time per step, log-log, one panel per scene
 //! and step rate), `target/pareto/targets.csv`, `target/pareto/xpbd.csv`,
-//! `target/pareto/xpbd.svg` and `target/pareto/precision.csv`, and prints the tables of
+//! `target/pareto/xpbd.svg`, `target/pareto/precision.csv`, `target/pareto/targets.md` and
+//! `target/pareto/targets-detail.md` (the tables docs/benchmarks.md includes), and prints
+//! the tables of
 //! `docs/benchmarks.md`.
 //!
 //! Instruction counts: where Valgrind is installed, the bench runs itself again under
@@ -612,6 +614,70 @@ fn targets_report(rows: &[TargetRow]) -> String {
     goals
 }
 
+/// The implementations of the targets section, each over the six scenes, as the
+/// Markdown table docs/benchmarks.md includes (`target/pareto/targets-detail.md`):
+/// bytes per value, instructions and time per value step, the time over the minimal
+/// kernel's on the same scene, and the worst error.
+fn targets_detail(rows: &[TargetRow]) -> String {
+    const NAMES: [(&str, &str); 7] = [
+        (
+            "minimal",
+            "minimal kernel: `u = r·u − k·x; x += u` over two `f32` arrays",
+        ),
+        (
+            "value/advance",
+            "`SpringValue::<f32, 1>::advance` (no rest test)",
+        ),
+        ("value/step", "`SpringValue::<f32, 1>::step` (rest test on)"),
+        ("batch/advance", "`SpringBatch::<f32, 1, 1000>::advance`"),
+        ("batch/step", "`SpringBatch::<f32, 1, 1000>::step`"),
+        ("damped-springs", "damped-springs 1.0.0 (`f32`)"),
+        (
+            "animato/semi-implicit-euler",
+            "animato-spring 1.7.3, semi-implicit Euler",
+        ),
+    ];
+    let span = |imp: &str, f: &dyn Fn(&TargetRow) -> Option<f64>| {
+        rows.iter()
+            .filter(|r| r.implementation == imp)
+            .filter_map(f)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(v), hi.max(v))
+            })
+    };
+    let shown = |(lo, hi): (f64, f64), f: &dyn Fn(f64) -> String| {
+        let (a, b) = (f(lo), f(hi));
+        if lo > hi {
+            "–".to_string()
+        } else if a == b {
+            a
+        } else {
+            format!("{a} to {b}")
+        }
+    };
+    let minimal = |r: &TargetRow| {
+        rows.iter()
+            .find(|m| m.scene == r.scene && m.step_hz == r.step_hz && m.implementation == "minimal")
+            .map(|m| r.ns / m.ns)
+    };
+    let mut t = String::from(
+        "| implementation | bytes per value | instructions per value step | time per value step | × minimal | worst error |\n\
+         |---|---|---|---|---|---|\n",
+    );
+    for (imp, name) in NAMES {
+        let bytes = span(imp, &|r| Some(r.bytes as f64));
+        t.push_str(&format!(
+            "| {name} | {} | {} | {} ns | {}× | {} |\n",
+            shown(bytes, &|v| format!("{v:.0}")),
+            shown(span(imp, &|r| r.instructions), &|v| format!("{v:.1}")),
+            shown(span(imp, &|r| Some(r.ns)), &|v| format!("{v:.2}")),
+            shown(span(imp, &minimal), &|v| format!("{v:.1}")),
+            shown(span(imp, &|r| Some(r.error)), &|v| format!("{v:.1e}")),
+        ));
+    }
+    t
+}
+
 /// The range `(lo, hi)` over the six scenes of a figure of one implementation.
 type Over<'a> = &'a dyn Fn(&str, &dyn Fn(&TargetRow) -> Option<f64>) -> (f64, f64);
 /// The range of a figure of one implementation against another on the same scene.
@@ -1091,6 +1157,9 @@ fn main() {
         let goals = targets_report(&rows);
         std::fs::write(dir.join("targets.md"), goals + "\n").expect("write targets.md");
         written.push("targets.md");
+        std::fs::write(dir.join("targets-detail.md"), targets_detail(&rows))
+            .expect("write targets-detail.md");
+        written.push("targets-detail.md");
     }
     for file in written {
         println!("wrote {}", dir.join(file).display());
