@@ -131,6 +131,7 @@ fn assert_silent(backend: &str, s: &Sweep) {
 #[test]
 fn short_rest_sweep_table() {
     let cases = short();
+    let mut rows = Vec::new();
     for (name, s) in [
         ("f64", sweep::<f64>("f64", &cases)),
         ("f32", sweep::<f32>("f32", &cases)),
@@ -138,7 +139,14 @@ fn short_rest_sweep_table() {
     ] {
         print(name, &s);
         assert_within_limit(name, &s);
+        rows.extend(s.rows(name));
     }
+    // docs/knob.md's table ("Silence at rest"), checked by scripts/check-figures.
+    let path = lab::table::write_figures(
+        "knob/rest-short.md",
+        &lab::table::markdown(&Sweep::ROW_HEADER, &rows),
+    );
+    println!("wrote {}", path.display());
 }
 
 /// The target on the short grid, in every backend. Not met yet (`f64`: 13 of 55

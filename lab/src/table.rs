@@ -42,6 +42,22 @@ pub fn sci(v: f64) -> String {
     }
 }
 
+/// Writes `text` to `target/figures/NAME` in the workspace: the file a test or a tool
+/// generates for a figures block of the docs (`scripts/check-figures` compares them), and
+/// the path, for the test's output.
+pub fn write_figures(name: &str, text: &str) -> std::path::PathBuf {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("lab/ lies in the workspace")
+        .join("target/figures")
+        .join(name);
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).expect("create the figures directory");
+    }
+    std::fs::write(&path, text).expect("write the figures file");
+    path
+}
+
 /// A Markdown table: the header, the `|---|` rule, and the rows (cells as given).
 pub fn markdown(header: &[&str], rows: &[Vec<String>]) -> String {
     let mut out = format!("| {} |\n", header.join(" | "));

@@ -839,6 +839,40 @@ impl Sweep {
         s
     }
 
+    /// The columns of [`Sweep::rows`].
+    pub const ROW_HEADER: [&'static str; 9] = [
+        "backend",
+        "rotor",
+        "runs",
+        "chatter above 20/s (runs)",
+        "worst",
+        "at rest above 2 % p-p (runs)",
+        "worst",
+        "oscillating",
+        "unsettled",
+    ];
+
+    /// One row per rotor, for the docs' table of several backends ([`Sweep::ROW_HEADER`]).
+    pub fn rows(&self, backend: &str) -> Vec<Vec<String>> {
+        RotorKind::ALL
+            .iter()
+            .zip(&self.rotors)
+            .map(|(kind, t)| {
+                vec![
+                    format!("`{backend}`"),
+                    kind.name().to_string(),
+                    t.runs.to_string(),
+                    t.chatter.to_string(),
+                    format!("{:.0}/s", t.worst_chatter.0),
+                    t.ripple.to_string(),
+                    format!("{:.2} %", 100.0 * t.worst_ripple.0),
+                    t.oscillating.to_string(),
+                    t.unsettled.to_string(),
+                ]
+            })
+            .collect()
+    }
+
     /// The worst runs, one line each: for finding them again.
     pub fn worst(&self) -> String {
         let mut s = String::new();
