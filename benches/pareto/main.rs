@@ -16,8 +16,9 @@
 //! `scene,implementation,backend,step_hz,ns_per_step,max_rel_error`),
 //! `target/pareto/pareto.svg` (error against time per step, log-log, one panel per scene
 //! and step rate), `target/pareto/targets.csv`, `target/pareto/xpbd.csv`,
-//! `target/pareto/xpbd.svg`, `target/pareto/precision.csv`, `target/pareto/targets.md` and
-//! `target/pareto/targets-detail.md` (the tables docs/benchmarks.md includes), and prints
+//! `target/pareto/xpbd.svg`, `target/pareto/precision.csv`, and the tables
+//! docs/benchmarks.md includes (`target/pareto/targets.md`, `targets-detail.md`,
+//! `values.md`, `values-instructions.md`), and prints
 //! the tables of
 //! `docs/benchmarks.md`.
 //!
@@ -379,6 +380,104 @@ fn report(rows: &[Row]) {
     }
     println!("\n(time ratios are stiffspring/peer: below 1× is faster; errors are ours vs theirs)");
     network_report(rows);
+}
+
+/// The peers of section 2, each over the twelve scenes, as the Markdown table
+/// docs/benchmarks.md includes (`target/pareto/values.md`): stiffspring's time over the
+/// peer's, and both worst errors, per damping ratio.
+fn values_summary(rows: &[Row]) -> String {
+    const PEERS: [(&str, &str, &str); 5] = [
+        ("damped-springs", "f64", "damped-springs 1.0.0, `f64`"),
+        ("damped-springs", "f32", "damped-springs 1.0.0, `f32`"),
+        (
+            "animato-spring/semi-implicit-euler",
+            "f32",
+            "animato-spring 1.7.3, semi-implicit Euler (`f32`)",
+        ),
+        (
+            "animato-spring/rk4",
+            "f32",
+            "animato-spring 1.7.3, RK4 (`f32`)",
+        ),
+        ("spring_damper", "f32", "spring_damper 0.1.1 (`f32`)"),
+    ];
+    let span = |values: &mut dyn Iterator<Item = f64>, f: &dyn Fn(f64) -> String| {
+        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        let (a, b) = (f(lo), f(hi));
+        if lo > hi {
+            "–".to_string()
+        } else if a == b {
+            a
+        } else {
+            format!("{a} to {b}")
+        }
+    };
+    let mut t = String::from(
+        "| peer | ζ | time, stiffspring / peer | worst error, stiffspring | worst error, peer |\n\
+         |---|---|---|---|---|\n",
+    );
+    for (imp, backend, name) in PEERS {
+        for zeta in ["zeta0.3", "zeta1"] {
+            // (stiffspring, peer) on each scene of this damping ratio.
+            let pairs: Vec<(&Row, &Row)> = rows
+                .iter()
+                .filter(|p| p.implementation == imp && p.backend == backend)
+                .filter(|p| p.scene.ends_with(zeta))
+                .filter_map(|p| {
+                    rows.iter()
+                        .find(|o| {
+                            o.scene == p.scene
+                                && o.step_hz == p.step_hz
+                                && o.implementation == "stiffspring"
+                                && o.backend == backend
+                        })
+                        .map(|o| (o, p))
+                })
+                .collect();
+            t.push_str(&format!(
+                "| {name} | {} | {}× | {} | {} |\n",
+                zeta.trim_start_matches("zeta"),
+                span(
+                    &mut pairs.iter().map(|(o, p)| o.ns_per_step / p.ns_per_step),
+                    &|v| { format!("{v:.2}") }
+                ),
+                span(&mut pairs.iter().map(|(o, _)| o.max_rel_error), &|v| {
+                    format!("{v:.1e}")
+                }),
+                span(&mut pairs.iter().map(|(_, p)| p.max_rel_error), &|v| {
+                    format!("{v:.1e}")
+                }),
+            ));
+        }
+    }
+    t
+}
+
+/// The host instructions per step of section 2 (`target/pareto/values-instructions.md`):
+/// each implementation and backend over the 1 kHz scenes.
+fn values_instructions(counts: &[(String, String, String, f64)]) -> String {
+    let mut keys: Vec<(&str, &str)> = Vec::new();
+    for (_, imp, backend, _) in counts {
+        if !keys.contains(&(imp.as_str(), backend.as_str())) {
+            keys.push((imp, backend));
+        }
+    }
+    let mut t =
+        String::from("| implementation | backend | instructions per step |\n|---|---|---|\n");
+    for (imp, backend) in keys {
+        let (lo, hi) = counts
+            .iter()
+            .filter(|(_, i, b, _)| i == imp && b == backend)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                (lo.min(c.3), hi.max(c.3))
+            });
+        let (a, b) = (format!("{lo:.1}"), format!("{hi:.1}"));
+        let n = if a == b { a } else { format!("{a} to {b}") };
+        t.push_str(&format!("| {imp} | `{backend}` | {n} |\n"));
+    }
+    t
 }
 
 /// The networks' and the knob's tables.
@@ -1132,9 +1231,20 @@ fn main() {
         std::fs::write(dir.join("pareto.svg"), svg(&rows)).expect("write pareto.svg");
         written.extend(["results.csv", "pareto.svg"]);
         report(&rows);
+        if options.runs("values") {
+            std::fs::write(dir.join("values.md"), values_summary(&rows)).expect("write values.md");
+            written.push("values.md");
+        }
     }
     if counting && options.runs("values") {
-        value_counts_report(&value_counts());
+        let counts = value_counts();
+        value_counts_report(&counts);
+        std::fs::write(
+            dir.join("values-instructions.md"),
+            values_instructions(&counts),
+        )
+        .expect("write values-instructions.md");
+        written.push("values-instructions.md");
     }
     if options.runs("xpbd") {
         let (rows, references) = xpbd_rows(network_plan, counting);
