@@ -18,7 +18,7 @@
 //! and step rate), `target/pareto/targets.csv`, `target/pareto/xpbd.csv`,
 //! `target/pareto/xpbd.svg`, `target/pareto/precision.csv`, and the tables
 //! docs/benchmarks.md includes (`target/pareto/targets.md`, `targets-detail.md`,
-//! `values.md`, `values-instructions.md`), and prints
+//! `values.md`, `values-instructions.md`, `xpbd-cost.md`, `xpbd.md`), and prints
 //! the tables of
 //! `docs/benchmarks.md`.
 //!
@@ -949,6 +949,87 @@ enum Metric {
     Time,
 }
 
+/// Section 3's two tables, as docs/benchmarks.md includes them: the cost of one substep
+/// per spring (`target/pareto/xpbd-cost.md`: from the runs at 32 and 64 substeps, whose
+/// difference is 32 substeps of every spring), and XPBD's error at 2, 8, 32 and 64
+/// substeps against stiffspring's (`exact`) at the same instructions and the same time,
+/// in `f32` (`target/pareto/xpbd.md`).
+fn xpbd_summary(rows: &[XpbdRow]) -> (String, String) {
+    let springs = |scene: &str| {
+        xpbd::models()
+            .iter()
+            .find(|m| m.name == scene)
+            .map_or(f64::NAN, |m| m.links.len() as f64)
+    };
+    let row = |scene: &str, backend: &str, imp: &str, n: usize| {
+        rows.iter().find(|r| {
+            r.scene == scene && r.backend == backend && r.implementation == imp && r.substeps == n
+        })
+    };
+    let mut cost = String::from("| scene | backend | XPBD | stiffspring |\n|---|---|---|---|\n");
+    for scene in xpbd::MODELS {
+        for backend in ["f32", "f64"] {
+            let cell = |imp: &str| {
+                let (Some(a), Some(b)) =
+                    (row(scene, backend, imp, 32), row(scene, backend, imp, 64))
+                else {
+                    return "–".to_string();
+                };
+                let per = 32.0 * springs(scene);
+                let instructions = match (a.instructions_per_frame, b.instructions_per_frame) {
+                    (Some(a), Some(b)) => format!("{:.0} instructions, ", (b - a) / per),
+                    _ => String::new(),
+                };
+                format!(
+                    "{instructions}{:.1} ns",
+                    (b.ns_per_frame - a.ns_per_frame) / per
+                )
+            };
+            cost.push_str(&format!(
+                "| {scene} | `{backend}` | {} | {} |\n",
+                cell("xpbd"),
+                cell("stiffspring/exact")
+            ));
+        }
+    }
+    let mut errors = String::from(
+        "| scene | XPBD substeps | XPBD error | stiffspring, equal instructions | stiffspring, equal time |\n\
+         |---|---|---|---|---|\n",
+    );
+    for scene in xpbd::MODELS {
+        let curve = |metric: Metric| -> Vec<(f64, f64)> {
+            let mut c: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.scene == scene && r.backend == "f32")
+                .filter(|r| r.implementation == "stiffspring/exact" && r.error.is_finite())
+                .filter_map(|r| Some((xpbd_cost(r, metric)?, r.error)))
+                .collect();
+            c.sort_by(|a, b| a.0.total_cmp(&b.0));
+            c
+        };
+        let (by_instructions, by_time) = (curve(Metric::Instructions), curve(Metric::Time));
+        for n in [2, 8, 32, 64] {
+            let Some(x) = row(scene, "f32", "xpbd", n) else {
+                continue;
+            };
+            let at = |c: &[(f64, f64)], metric: Metric| {
+                xpbd_cost(x, metric)
+                    .and_then(|cost| at_cost(c, cost))
+                    .map_or("(beyond the measured substeps)".to_string(), |e| {
+                        format!("{e:.1e}")
+                    })
+            };
+            errors.push_str(&format!(
+                "| {scene} | {n} | {:.1e} | {} | {} |\n",
+                x.error,
+                at(&by_instructions, Metric::Instructions),
+                at(&by_time, Metric::Time)
+            ));
+        }
+    }
+    (cost, errors)
+}
+
 /// `curve`'s error at `cost`, interpolated log-log between the two points around it
 /// (`curve` sorted by cost, finite errors only); `None` outside the curve.
 fn at_cost(curve: &[(f64, f64)], cost: f64) -> Option<f64> {
@@ -1252,6 +1333,10 @@ fn main() {
         std::fs::write(dir.join("xpbd.svg"), xpbd_svg(&rows)).expect("write xpbd.svg");
         written.extend(["xpbd.csv", "xpbd.svg"]);
         xpbd_report(&rows, &references);
+        let (cost, errors) = xpbd_summary(&rows);
+        std::fs::write(dir.join("xpbd-cost.md"), cost).expect("write xpbd-cost.md");
+        std::fs::write(dir.join("xpbd.md"), errors).expect("write xpbd.md");
+        written.extend(["xpbd-cost.md", "xpbd.md"]);
     }
     if options.runs("precision") {
         let rows = precision_rows(value_plan, options.quick, counting);
