@@ -41,9 +41,18 @@ pub fn angles(rate: f64) -> Vec<f64> {
         .collect()
 }
 
+/// The knob at rest where the encoder first reads, as a firmware starts it. (The hand's
+/// path starts at 1.5 rad, the midpoint between detents 7 and 8: a knob started there
+/// takes either, as its backend's rounding of the tie falls, and the first periods'
+/// torques of two backends then differ by the whole detent.)
+fn start<S: Scalar>(rate: f64) -> Option<Knob<S>> {
+    let first = *angles(rate).first()?;
+    Knob::<S>::new(&config(rate), S::from_f64(first)).ok()
+}
+
 /// The torque of every period, in `f64`; `None` if the backend rejects the knob.
 fn torques<S: Scalar>(rate: f64) -> Option<Vec<f64>> {
-    let mut knob = Knob::<S>::new(&config(rate), S::from_f64(1.5)).ok()?;
+    let mut knob = start::<S>(rate)?;
     Some(
         angles(rate)
             .iter()
@@ -68,7 +77,7 @@ fn entry<S: Scalar>(rate: f64, reference: &[f64]) -> Option<Entry> {
         .zip(reference)
         .map(|(a, b)| (a - b).abs())
         .fold(0.0, f64::max);
-    let start = Knob::<S>::new(&config(rate), S::from_f64(1.5)).ok()?;
+    let start = start::<S>(rate)?;
     let mut knob = start.clone();
     let angles: Vec<S> = angles(rate).into_iter().map(S::from_f64).collect();
     let steps = angles.len();

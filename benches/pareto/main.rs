@@ -18,7 +18,8 @@
 //! and step rate), `target/pareto/targets.csv`, `target/pareto/xpbd.csv`,
 //! `target/pareto/xpbd.svg`, `target/pareto/precision.csv`, and the tables
 //! docs/benchmarks.md includes (`target/pareto/targets.md`, `targets-detail.md`,
-//! `values.md`, `values-instructions.md`, `xpbd-cost.md`, `xpbd.md`), and prints
+//! `values.md`, `values-instructions.md`, `xpbd-cost.md`, `xpbd.md`, `networks.md`,
+//! `knob.md`, `precision.md`), and prints
 //! the tables of
 //! `docs/benchmarks.md`.
 //!
@@ -478,6 +479,52 @@ fn values_instructions(counts: &[(String, String, String, f64)]) -> String {
         t.push_str(&format!("| {imp} | `{backend}` | {n} |\n"));
     }
     t
+}
+
+/// Section 5's tables, as docs/benchmarks.md includes them: each network's
+/// implementations with one column per backend (`target/pareto/networks.md`: time per
+/// spring step and error, "diverges" where the error is not finite or above the size),
+/// and the knob's update time and worst torque difference from the `f64` knob
+/// (`target/pareto/knob.md`).
+fn networks_summary(rows: &[Row]) -> (String, String) {
+    const BACKENDS: [&str; 4] = ["f64", "f32", "I32F32", "I16F16"];
+    let mut t = String::from(
+        "| scene | implementation | `f64` | `f32` | `I32F32` | `I16F16` |\n|---|---|---|---|---|---|\n",
+    );
+    for scene in ["rope_64", "jelly_16x16"] {
+        let mut implementations: Vec<&str> = Vec::new();
+        for r in rows.iter().filter(|r| r.scene == scene) {
+            if !implementations.contains(&r.implementation.as_str()) {
+                implementations.push(&r.implementation);
+            }
+        }
+        for imp in implementations {
+            let cells: Vec<String> = BACKENDS
+                .iter()
+                .map(|b| {
+                    match rows
+                        .iter()
+                        .find(|r| r.scene == scene && r.implementation == imp && r.backend == *b)
+                    {
+                        None => String::new(),
+                        Some(r) if !(r.max_rel_error <= 1.0) => "diverges".into(),
+                        Some(r) => format!("{:.1} ns, {:.1e}", r.ns_per_step, r.max_rel_error),
+                    }
+                })
+                .collect();
+            t.push_str(&format!("| {scene} | {imp} | {} |\n", cells.join(" | ")));
+        }
+    }
+    let mut k = String::from(
+        "| rate | backend | time per update | worst torque difference from the `f64` knob |\n|---|---|---|---|\n",
+    );
+    for r in rows.iter().filter(|r| r.scene == "knob_torque") {
+        k.push_str(&format!(
+            "| {} Hz | `{}` | {:.1} ns | {:.1e} |\n",
+            r.step_hz, r.backend, r.ns_per_step, r.max_rel_error
+        ));
+    }
+    (t, k)
 }
 
 /// The networks' and the knob's tables.
@@ -1237,6 +1284,30 @@ fn precision_csv(rows: &[precision::Row]) -> String {
     )
 }
 
+/// The precision table docs/benchmarks.md includes (`target/pareto/precision.md`): every
+/// representation's worst error at each rate, the starts it rejects, and its model's host
+/// instructions per step (the time, which moves from run to run, is in the CSV).
+fn precision_summary(rows: &[precision::Row]) -> String {
+    let e = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.1e}"));
+    let mut t = String::from(
+        "| backend | representation | 60 Hz | 1 kHz | 10 kHz | starts rejected | host instructions per step |\n\
+         |---|---|---|---|---|---|---|\n",
+    );
+    for r in rows {
+        t.push_str(&format!(
+            "| `{}` | `{}` | {} | {} | {} | {} | {} |\n",
+            r.backend,
+            r.candidate,
+            e(r.errors[0]),
+            e(r.errors[1]),
+            e(r.errors[2]),
+            r.rejected,
+            r.instructions.map_or("–".into(), |i| format!("{i:.1}")),
+        ));
+    }
+    t
+}
+
 fn precision_report(rows: &[precision::Row]) {
     println!(
         "\nPrecision (issue 10): worst error over the study's grid at each rate, and the host cost of a step of the study's model"
@@ -1316,6 +1387,12 @@ fn main() {
             std::fs::write(dir.join("values.md"), values_summary(&rows)).expect("write values.md");
             written.push("values.md");
         }
+        if options.runs("networks") && options.runs("knob") {
+            let (networks, knob) = networks_summary(&rows);
+            std::fs::write(dir.join("networks.md"), networks).expect("write networks.md");
+            std::fs::write(dir.join("knob.md"), knob).expect("write knob.md");
+            written.extend(["networks.md", "knob.md"]);
+        }
     }
     if counting && options.runs("values") {
         let counts = value_counts();
@@ -1344,6 +1421,9 @@ fn main() {
             .expect("write precision.csv");
         written.push("precision.csv");
         precision_report(&rows);
+        std::fs::write(dir.join("precision.md"), precision_summary(&rows))
+            .expect("write precision.md");
+        written.push("precision.md");
     }
     if options.runs("targets") {
         let rows = target_rows(value_plan, counting);
