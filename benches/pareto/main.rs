@@ -507,7 +507,9 @@ fn networks_summary(rows: &[Row]) -> (String, String) {
                         .find(|r| r.scene == scene && r.implementation == imp && r.backend == *b)
                     {
                         None => String::new(),
-                        Some(r) if !(r.max_rel_error <= 1.0) => "diverges".into(),
+                        Some(r) if r.max_rel_error.is_nan() || r.max_rel_error > 1.0 => {
+                            "diverges".into()
+                        }
                         Some(r) => format!("{:.1} ns, {:.1e}", r.ns_per_step, r.max_rel_error),
                     }
                 })
