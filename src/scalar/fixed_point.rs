@@ -176,9 +176,14 @@ macro_rules! fixed_backend {
                 fn general_step(gains: &FixedGains<$Half>, x: &mut $State, v: &mut $State) {
                     let k = gains.stiffness;
                     let d = gains.damping;
-                    let u = v.saturating_sub($arith::mul_shift::<false>(*x, k.mantissa, k.shift));
+                    let u = v.saturating_sub(product(*x, k.mantissa, k.shift, false));
                     *x = x.saturating_add(u);
-                    *v = u.saturating_sub($arith::mul_shift::<true>(u, d.mantissa, d.shift));
+                    *v = u.saturating_sub(product(u, d.mantissa, d.shift, true));
+                }
+                /// One copy of the saturating product for both of the step's roundings.
+                #[inline(never)]
+                fn product(x: $State, m: $Half, shift: i32, away: bool) -> $State {
+                    $arith::mul_shift_rounding(x, m, shift, away)
                 }
             }
             #[inline(always)]

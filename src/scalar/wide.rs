@@ -21,6 +21,15 @@ macro_rules! wide_arithmetic {
             /// left shift, exact).
             #[inline(always)]
             pub(crate) fn mul_shift<const AWAY: bool>(x: $Full, m: $Half, shift: i32) -> $Full {
+                mul_shift_rounding(x, m, shift, AWAY)
+            }
+
+            /// [`mul_shift`] with the rounding chosen at run time: one copy of the code
+            /// serves both roundings where it is not inlined (the step's cold path).
+            #[inline(always)]
+            pub(crate) fn mul_shift_rounding(x: $Full, m: $Half, shift: i32, away: bool) -> $Full {
+                #[allow(non_snake_case)]
+                let AWAY = away;
                 let (xh, xl) = ((x >> H) as $Half, x as $HalfU);
                 let high = $mul(xh, m);
                 let low = $mul_unsigned(xl, m);
