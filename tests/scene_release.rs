@@ -179,6 +179,56 @@ fn sideways_bound<S: Scalar>() -> f64 {
     }
 }
 
+/// The worst error of each geometry over the grid (and over its damped cases alone), each
+/// with a value's error on the same case: a row of docs/networks.md's table.
+fn worst<S: Scalar>() -> Vec<String> {
+    let mut row = vec![format!("`{}`", S::NAME)];
+    for geometry in [Geometry::Line, Geometry::Point, Geometry::RestLength] {
+        let mut all: (f64, Option<Case>) = (0.0, None);
+        let mut damped: (f64, Option<Case>) = (0.0, None);
+        for case in grid().into_iter().filter(|c| c.geometry == geometry) {
+            let (e, _) = error::<S>(&case);
+            if e > all.0 {
+                all = (e, Some(case));
+            }
+            if case.zeta > 0.0 && e > damped.0 {
+                damped = (e, Some(case));
+            }
+        }
+        let cell = |(e, case): (f64, Option<Case>)| match case {
+            Some(c) => format!(
+                "{e:.1e} at ζ = {}, {} Hz at {} Hz (a value: {:.1e})",
+                c.zeta,
+                c.frequency,
+                c.rate,
+                value_error::<S>(&c)
+            ),
+            None => "–".into(),
+        };
+        row.push(cell(all));
+        row.push(cell(damped));
+    }
+    row
+}
+
+/// docs/networks.md's table of the worst releases in every backend, written for
+/// `scripts/check-figures` (`target/figures/scene-release.md`).
+#[test]
+fn release_table() {
+    let rows = vec![worst::<f64>(), worst::<f32>(), worst::<I16F16>()];
+    let header = [
+        "backend",
+        "1-D",
+        "1-D, ζ > 0",
+        "2-D point spring",
+        "2-D point spring, ζ > 0",
+        "2-D with rest length (its extension)",
+        "2-D with rest length, ζ > 0",
+    ];
+    let path = lab::table::write_figures("scene-release.md", &lab::table::markdown(&header, &rows));
+    println!("wrote {}", path.display());
+}
+
 fn check<S: Scalar>() {
     for geometry in [Geometry::Line, Geometry::Point, Geometry::RestLength] {
         let mut worst = (0.0, None);
