@@ -199,6 +199,82 @@ fn f32_undamped_drift_over_a_dense_sweep_of_f_dt() {
     );
 }
 
+/// docs/accuracy.md's table of this file's worst cases, written for
+/// `scripts/check-figures`: `target/figures/exact-map-short.md`, or
+/// `exact-map-full.md` with `STIFFSPRING_FULL_GRID`.
+#[test]
+fn accuracy_table() {
+    let row = |backend: &str, cases: &str, (worst, case): (f64, Case), bound: &str| {
+        vec![
+            format!("`{backend}`"),
+            cases.to_string(),
+            format!("{worst:.2e}"),
+            format!(
+                "{} Hz at {} Hz, ζ {}, {}, A = {}",
+                case.frequency,
+                case.rate,
+                case.zeta,
+                if case.fling { "fling" } else { "release" },
+                case.amplitude
+            ),
+            bound.to_string(),
+        ]
+    };
+    let all = [0.0, 0.1, 0.3, 0.7, 1.0, 2.0, 10.0];
+    let rows = vec![
+        row(
+            "I16F16",
+            "ζ 0.1–10, A = 1 and 100",
+            worst_over::<I16F16>(&grid(&DAMPED, &[1.0, 100.0])),
+            "1e−3",
+        ),
+        row(
+            "I16F16",
+            "ζ = 0, A = 1 and 100",
+            worst_over::<I16F16>(&grid(&[0.0], &[1.0, 100.0])),
+            "1e−3",
+        ),
+        row(
+            "I32F32",
+            "ζ 0–10, A = 1 and 100",
+            worst_over::<I32F32>(&grid(&all, &[1.0, 100.0])),
+            "1e−7",
+        ),
+        row(
+            "f32",
+            "ζ 0.1–10, A = 1 and 100",
+            worst_over::<f32>(&grid(&DAMPED, &[1.0, 100.0])),
+            "1e−5",
+        ),
+        row(
+            "f32",
+            "ζ = 0, A = 1",
+            worst_over::<f32>(&grid(&[0.0], &[1.0])),
+            "`1e−5 + N·tan(θ/2)·2⁻²⁴`",
+        ),
+        row(
+            "f64",
+            "ζ 0, 0.1, 1, 10, A = 1",
+            worst_over::<f64>(&grid(&[0.0, 0.1, 1.0, 10.0], &[1.0])),
+            "1e−9",
+        ),
+    ];
+    let header = [
+        "backend",
+        "cases",
+        "worst error / amplitude",
+        "where",
+        "bound asserted",
+    ];
+    let name = if full_grid() {
+        "exact-map-full.md"
+    } else {
+        "exact-map-short.md"
+    };
+    let path = lab::table::write_figures(name, &lab::table::markdown(&header, &rows));
+    println!("wrote {}", path.display());
+}
+
 #[test]
 fn f64_is_exact_to_rounding() {
     let zetas = [0.0, 0.1, 1.0, 10.0];
