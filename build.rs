@@ -29,8 +29,9 @@ fn main() {
     );
 
     // ARMv6-M (Cortex-M0/M0+/M1) and ARMv8-M Baseline (M23) multiply 32×32 → 32 bits
-    // only: the fixed-point step builds its long products from 16-bit halves there
-    // (`src/scalar/wide.rs`). Rust has no stable `target_feature` cfg for this.
+    // only: the fixed-point backends build their long products from 16-bit halves there
+    // (`src/scalar/widening.rs`, and the fast step's in `src/scalar/fast.rs`). Rust has no
+    // stable `target_feature` cfg for this.
     println!("cargo::rustc-check-cfg=cfg(no_long_multiply)");
     let target = env::var("TARGET").unwrap_or_default();
     if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {

@@ -6,7 +6,8 @@
 //! `|m| < 2^(H−1)`; `T = xₕm + ⌊xₗm / 2^H⌋` and `R = xₗm mod 2^H` then hold the exact
 //! product `p = T·2^H + R` of up to `3H − 1` bits. The shift and the rounding need only
 //! `T` and whether `R`'s low bits are zero. On a Cortex-M4 each partial product is one
-//! `smull`/`umull`; on a Cortex-M0 a library multiply.
+//! `smull`/`umull`; on a Cortex-M0 four 32-bit multiplies of 16-bit halves
+//! (`src/scalar/widening.rs`).
 
 macro_rules! wide_arithmetic {
     (
