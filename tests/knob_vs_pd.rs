@@ -35,9 +35,22 @@ fn knob_against_smartknob_pd() {
     );
     println!("|---|---|---|---|---|---|---|---|");
     let mut compared = 0;
+    let mut rows = Vec::new();
     for rate in [1_000.0, 10_000.0] {
         for kp in [0.02, 0.1, 0.25] {
             let c = compare(rate, kp, knob_law);
+            let cell = |r: &lab::knob::pd::FlickResult| {
+                format!("{:.0} ms, {:.2} mN·m", r.settle_ms, r.ripple_mnm)
+            };
+            rows.push(vec![
+                format!("{kp}"),
+                format!("{} kHz", rate / 1e3),
+                format!("ζ {:.2}: {}", c.pd_zeta, cell(&c.pd)),
+                format!("ζ {:.2}: {}", c.knob_zeta, cell(&c.matched)),
+                cell(&c.knob),
+                format!("{:.2}", c.knob.settle_ms / c.pd.settle_ms),
+                format!("{:.2}", c.knob.settle_ms / c.matched.settle_ms),
+            ]);
             for (law, zeta, r) in [
                 ("SmartKnob PD", c.pd_zeta, &c.pd),
                 ("stiffspring", c.knob_zeta, &c.knob),
@@ -71,4 +84,16 @@ fn knob_against_smartknob_pd() {
         }
     }
     assert_eq!(compared, 6);
+    // docs/knob.md's table, checked by scripts/check-figures.
+    let header = [
+        "`k_p` (N·m/rad)",
+        "rate",
+        "SmartKnob's PD: settle, ripple",
+        "PD with the knob's damping",
+        "knob: settle, ripple",
+        "knob / SmartKnob's PD",
+        "knob / matched PD",
+    ];
+    let path = lab::table::write_figures("knob/vs-pd.md", &lab::table::markdown(&header, &rows));
+    println!("wrote {}", path.display());
 }

@@ -81,24 +81,12 @@
 //! | full | 12,960 | 204,120 | **0** | `cargo test --release --test knob_sweep -- --ignored --nocapture` (minutes; ignored in a plain `cargo test`) |
 //! | short, `f64`, `f32`, `I16F16` | 256 | 2,688 each | **0** | `cargo test --release --test knob_sweep -- --nocapture` |
 //!
-//! **Against SmartKnob-style PD detents** (`τ = −k_p·e − k_d·ω`, SmartKnob's
-//! `k_d = 0.005 s·k_p`), with the same rotor (1e−5 kg·m²), 24 detents, snap point, torque
-//! limit (50 mN·m), small-signal stiffness `k_p`, one period of delay and 14-bit encoder, a
-//! flick of 20 rad/s released on a detent; ripple is the torque's peak to peak over the
-//! last third of 1.5 s (`cargo test --release --test knob_vs_pd -- --nocapture`):
-//!
-//! | `k_p` (N·m/rad) | rate | PD: settle, ripple | knob (`ζ` 0.7): settle, ripple |
-//! |---|---|---|---|
-//! | 0.02 | 1 kHz | 764 ms, 0.24 mN·m | 78 ms, 0.07 mN·m |
-//! | 0.1 | 1 kHz | 177 ms, 0.42 mN·m | 33 ms, 0.33 mN·m |
-//! | 0.25 | 1 kHz | 75 ms, 1.15 mN·m | 27 ms, 1.06 mN·m |
-//! | 0.02 | 10 kHz | 574 ms, 0.81 mN·m | 86 ms, 0.00 mN·m |
-//! | 0.1 | 10 kHz | 133 ms, 3.87 mN·m | 42 ms, 0.31 mN·m |
-//! | 0.25 | 10 kHz | 61 ms, 9.68 mN·m | 27 ms, 0.80 mN·m |
-//!
-//! The knob settles in 0.10–0.44 of the PD's time with less ripple at rest: the PD's
-//! ripple is its damping on a one-count velocity step, `k_d·count/dt`, which grows with
-//! the rate; the knob's is the filtered kick, which does not.
+//! **Against SmartKnob-style PD detents** (`τ = −k_p·e − k_d·ω`), with the same rotor,
+//! detents, torque limit, small-signal stiffness `k_p`, delay and encoder, flicked at
+//! 20 rad/s: the knob settles in 0.10–0.43 of the time of SmartKnob's own PD
+//! (`k_d = 0.005 s·k_p`, lightly damped), and in 0.77–1.17 of the time of a PD with the
+//! knob's own damping, with less ripple at rest in most cases. docs/knob.md has the table
+//! (`cargo test --release --test knob_vs_pd -- --nocapture` writes it).
 //!
 //! # Fixed point, far from the origin
 //!

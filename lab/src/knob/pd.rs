@@ -122,6 +122,9 @@ pub fn flick(rate: f64, mut law: impl FnMut(f64) -> (f64, i32)) -> FlickResult {
 pub struct Comparison {
     /// SmartKnob's PD.
     pub pd: FlickResult,
+    /// The same PD with the knob's damping (`k_d = B`, the knob's `C_d·I/dt`): a PD
+    /// matched to the knob in stiffness and damping, so that what differs is the law.
+    pub matched: FlickResult,
     /// This crate's knob.
     pub knob: FlickResult,
     /// The PD's small-signal damping ratio.
@@ -151,11 +154,24 @@ pub fn compare(rate: f64, kp: f64, knob: impl FnOnce(f64, f64, f64) -> KnobLaw) 
         index: 0,
         previous: 0.0,
     };
+    let mut matched = Pd {
+        kp,
+        kd: 0.0,
+        dt,
+        width,
+        threshold: pd.threshold,
+        centre: 0.0,
+        index: 0,
+        previous: 0.0,
+    };
     let pd_result = flick(rate, |a| pd.update(a));
     let (mut law, cd) = knob(dt, width, kp);
     let knob_result = flick(rate, &mut law);
+    matched.kd = cd * INERTIA / dt;
+    let matched_result = flick(rate, |a| matched.update(a));
     Comparison {
         pd: pd_result,
+        matched: matched_result,
         knob: knob_result,
         pd_zeta: kd / (2.0 * (kp * INERTIA).sqrt()),
         knob_zeta: cd * INERTIA / dt / (2.0 * (kp * INERTIA).sqrt()),
