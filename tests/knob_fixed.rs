@@ -92,8 +92,7 @@ fn replay<S: Scalar>(config: &KnobConfig, angles: &[f64]) -> (f64, Vec<f64>) {
 
 #[test]
 fn fixed_point_torque_matches_f64() {
-    println!("| rate | scene | I16F16 | I32F32 | f32 |");
-    println!("|---|---|---|---|---|");
+    let mut rows = Vec::new();
     let mut worst16: f64 = 0.0;
     for rate in [1_000.0, 4_000.0, 10_000.0] {
         for magnets in [false, true] {
@@ -105,11 +104,21 @@ fn fixed_point_torque_matches_f64() {
             let (d16, d32, df) = (d16.len(), d32.len(), df.len());
             assert!(d16 <= 4 && d32 == 0 && df <= 4, "{rate}: {d16} {d32} {df}");
             let name = if magnets { "magnets" } else { "detents" };
-            println!("| {rate} Hz | {name} | {e16:.1e} | {e32:.1e} | {ef:.1e} |");
+            rows.push(vec![
+                format!("{rate} Hz"),
+                name.to_string(),
+                format!("{e16:.1e}"),
+                format!("{e32:.1e}"),
+                format!("{ef:.1e}"),
+            ]);
             worst16 = worst16.max(e16);
             assert!(e32 < 1e-6 && ef < 1e-4, "{rate} {name}: {e32} {ef}");
         }
     }
+    // docs/knob.md's table, checked by scripts/check-figures.
+    let table = lab::table::markdown(&["rate", "scene", "`I16F16`", "`I32F32`", "`f32`"], &rows);
+    print!("{table}");
+    lab::table::write_figures("knob/fixed.md", &table);
     println!("worst I16F16 torque error: {worst16:.2e} of the limit");
     assert!(worst16 < 1e-3, "{worst16}");
 }
@@ -153,8 +162,7 @@ fn walk_and_wiggle(far: f64) -> Vec<f64> {
 #[test]
 fn endless_i16f16_knob_is_exact_far_from_its_origin() {
     let config = endless();
-    println!("| angle | I16F16 worst torque error | detent | periods whose index differs |");
-    println!("|---|---|---|---|");
+    let mut rows = Vec::new();
     for far in [1_000.0, 10_000.0, 32_000.0] {
         let angles = walk_and_wiggle(far);
         let (e16, d16) = replay::<I16F16>(&config, &angles);
@@ -166,11 +174,12 @@ fn endless_i16f16_knob_is_exact_far_from_its_origin() {
             k
         };
         let expected = (far / (TAU / 100.0)).round() as i32;
-        println!(
-            "| {far} rad | {e16:.1e} | {} (f64: {expected}) | {} |",
-            knob.detent(),
-            d16.len()
-        );
+        rows.push(vec![
+            format!("{far} rad"),
+            format!("{e16:.1e}"),
+            format!("{} (`f64`: {expected})", knob.detent()),
+            d16.len().to_string(),
+        ]);
         // 2.5e−3 rather than the scripted scene's 1e−3: the damper's play (1.25 counts)
         // is rounded to the backend's last bit, so where a movement meets the play's edge
         // the two knobs' damper inputs differ by up to one LSB, times this stiff knob's
@@ -209,4 +218,14 @@ fn endless_i16f16_knob_is_exact_far_from_its_origin() {
             assert!((o.torque.to_f64() - r.torque).abs() < 2.5e-3, "{far} {k}");
         }
     }
+    // docs/knob.md's table, checked by scripts/check-figures.
+    let header = [
+        "angle",
+        "`I16F16` worst torque error",
+        "detent",
+        "periods whose index differs",
+    ];
+    let table = lab::table::markdown(&header, &rows);
+    print!("{table}");
+    lab::table::write_figures("knob/fixed-far.md", &table);
 }
