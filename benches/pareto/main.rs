@@ -332,6 +332,28 @@ fn svg(rows: &[Row]) -> String {
 }
 
 /// `a/b` as `0.42×`.
+/// The least and the largest of `values`; `(∞, −∞)` when there are none.
+fn span(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
+    values
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        })
+}
+
+/// A [`span`] as text: both ends written by `f` and joined by `join`, one figure where
+/// both ends write the same, `–` for an empty span.
+fn span_text((lo, hi): (f64, f64), join: &str, f: impl Fn(f64) -> String) -> String {
+    let (a, b) = (f(lo), f(hi));
+    if lo > hi {
+        "–".to_string()
+    } else if a == b {
+        a
+    } else {
+        format!("{a}{join}{b}")
+    }
+}
+
 fn ratio(a: f64, b: f64) -> String {
     format!("{:.2}×", a / b)
 }
@@ -402,19 +424,6 @@ fn values_summary(rows: &[Row]) -> String {
         ),
         ("spring_damper", "f32", "spring_damper 0.1.1 (`f32`)"),
     ];
-    let span = |values: &mut dyn Iterator<Item = f64>, f: &dyn Fn(f64) -> String| {
-        let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        });
-        let (a, b) = (f(lo), f(hi));
-        if lo > hi {
-            "–".to_string()
-        } else if a == b {
-            a
-        } else {
-            format!("{a} to {b}")
-        }
-    };
     let mut t = String::from(
         "| peer | ζ | time, stiffspring / peer | worst error, stiffspring | worst error, peer |\n\
          |---|---|---|---|---|\n",
@@ -440,16 +449,21 @@ fn values_summary(rows: &[Row]) -> String {
             t.push_str(&format!(
                 "| {name} | {} | {}× | {} | {} |\n",
                 zeta.trim_start_matches("zeta"),
-                span(
-                    &mut pairs.iter().map(|(o, p)| o.ns_per_step / p.ns_per_step),
-                    &|v| { format!("{v:.2}") }
+                span_text(
+                    span(pairs.iter().map(|(o, p)| o.ns_per_step / p.ns_per_step)),
+                    " to ",
+                    |v| format!("{v:.2}")
                 ),
-                span(&mut pairs.iter().map(|(o, _)| o.max_rel_error), &|v| {
-                    format!("{v:.1e}")
-                }),
-                span(&mut pairs.iter().map(|(_, p)| p.max_rel_error), &|v| {
-                    format!("{v:.1e}")
-                }),
+                span_text(
+                    span(pairs.iter().map(|(o, _)| o.max_rel_error)),
+                    " to ",
+                    |v| { format!("{v:.1e}") }
+                ),
+                span_text(
+                    span(pairs.iter().map(|(_, p)| p.max_rel_error)),
+                    " to ",
+                    |v| { format!("{v:.1e}") }
+                ),
             ));
         }
     }
@@ -468,14 +482,16 @@ fn values_instructions(counts: &[(String, String, String, f64)]) -> String {
     let mut t =
         String::from("| implementation | backend | instructions per step |\n|---|---|---|\n");
     for (imp, backend) in keys {
-        let (lo, hi) = counts
-            .iter()
-            .filter(|(_, i, b, _)| i == imp && b == backend)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
-                (lo.min(c.3), hi.max(c.3))
-            });
-        let (a, b) = (format!("{lo:.1}"), format!("{hi:.1}"));
-        let n = if a == b { a } else { format!("{a} to {b}") };
+        let n = span_text(
+            span(
+                counts
+                    .iter()
+                    .filter(|(_, i, b, _)| i == imp && b == backend)
+                    .map(|c| c.3),
+            ),
+            " to ",
+            |v| format!("{v:.1}"),
+        );
         t.push_str(&format!("| {imp} | `{backend}` | {n} |\n"));
     }
     t
@@ -737,23 +753,13 @@ fn targets_report(rows: &[TargetRow]) -> String {
     }
     // The goals, over every scene: the worst case of each.
     let over = |imp: &str, f: &dyn Fn(&TargetRow) -> Option<f64>| -> (f64, f64) {
-        rows.iter()
-            .filter(|r| r.implementation == imp)
-            .filter_map(f)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            })
+        span(
+            rows.iter()
+                .filter(|r| r.implementation == imp)
+                .filter_map(f),
+        )
     };
-    let range = |(lo, hi): (f64, f64), digits: usize| {
-        let (a, b) = (format!("{lo:.digits$}"), format!("{hi:.digits$}"));
-        if lo > hi {
-            "–".to_string()
-        } else if a == b {
-            a
-        } else {
-            format!("{a}–{b}")
-        }
-    };
+    let range = |s: (f64, f64), digits: usize| span_text(s, "–", |v| format!("{v:.digits$}"));
     let versus = |imp: &str, base: &str, f: &dyn Fn(&TargetRow, &TargetRow) -> f64| {
         over(imp, &|r| find(&r.scene, r.step_hz, base).map(|b| f(r, b)))
     };
@@ -785,24 +791,14 @@ fn targets_detail(rows: &[TargetRow]) -> String {
             "animato-spring 1.7.3, semi-implicit Euler",
         ),
     ];
-    let span = |imp: &str, f: &dyn Fn(&TargetRow) -> Option<f64>| {
-        rows.iter()
-            .filter(|r| r.implementation == imp)
-            .filter_map(f)
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-                (lo.min(v), hi.max(v))
-            })
+    let over = |imp: &str, f: &dyn Fn(&TargetRow) -> Option<f64>| {
+        span(
+            rows.iter()
+                .filter(|r| r.implementation == imp)
+                .filter_map(f),
+        )
     };
-    let shown = |(lo, hi): (f64, f64), f: &dyn Fn(f64) -> String| {
-        let (a, b) = (f(lo), f(hi));
-        if lo > hi {
-            "–".to_string()
-        } else if a == b {
-            a
-        } else {
-            format!("{a} to {b}")
-        }
-    };
+    let shown = |s: (f64, f64), f: &dyn Fn(f64) -> String| span_text(s, " to ", f);
     let minimal = |r: &TargetRow| {
         rows.iter()
             .find(|m| m.scene == r.scene && m.step_hz == r.step_hz && m.implementation == "minimal")
@@ -813,14 +809,14 @@ fn targets_detail(rows: &[TargetRow]) -> String {
          |---|---|---|---|---|---|\n",
     );
     for (imp, name) in NAMES {
-        let bytes = span(imp, &|r| Some(r.bytes as f64));
+        let bytes = over(imp, &|r| Some(r.bytes as f64));
         t.push_str(&format!(
             "| {name} | {} | {} | {} ns | {}× | {} |\n",
             shown(bytes, &|v| format!("{v:.0}")),
-            shown(span(imp, &|r| r.instructions), &|v| format!("{v:.1}")),
-            shown(span(imp, &|r| Some(r.ns)), &|v| format!("{v:.2}")),
-            shown(span(imp, &minimal), &|v| format!("{v:.1}")),
-            shown(span(imp, &|r| Some(r.error)), &|v| format!("{v:.1e}")),
+            shown(over(imp, &|r| r.instructions), &|v| format!("{v:.1}")),
+            shown(over(imp, &|r| Some(r.ns)), &|v| format!("{v:.2}")),
+            shown(over(imp, &minimal), &|v| format!("{v:.1}")),
+            shown(over(imp, &|r| Some(r.error)), &|v| format!("{v:.1e}")),
         ));
     }
     t
@@ -1312,26 +1308,9 @@ fn precision_summary(rows: &[precision::Row]) -> String {
 
 fn precision_report(rows: &[precision::Row]) {
     println!(
-        "\nPrecision (issue 10): worst error over the study's grid at each rate, and the host cost of a step of the study's model"
+        "\nPrecision (issue 10): worst error over the study's grid at each rate, and the host cost of a step of the study's model (host times in precision.csv)"
     );
-    println!(
-        "| backend | representation | 60 Hz | 1 kHz | 10 kHz | rejected starts | host instructions/step | host ns/step |"
-    );
-    println!("|---|---|---|---|---|---|---|---|");
-    let e = |v: Option<f64>| v.map_or("–".into(), |v| format!("{v:.1e}"));
-    for r in rows {
-        println!(
-            "| {} | `{}` | {} | {} | {} | {} | {} | {:.2} |",
-            r.backend,
-            r.candidate,
-            e(r.errors[0]),
-            e(r.errors[1]),
-            e(r.errors[2]),
-            r.rejected,
-            r.instructions.map_or("–".into(), |i| format!("{i:.1}")),
-            r.ns
-        );
-    }
+    print!("{}", precision_summary(rows));
 }
 
 fn main() {
