@@ -648,6 +648,40 @@ fn knob_update<S: Scalar>(design: &stiffspring::knob::KnobDesign<S>) -> Option<K
     Some(bench)
 }
 
+/// `Knob::update` at rest on a detent's centre, its reading toggling between two
+/// adjacent counts every period, as a rotor's between two counts does: the period a knob
+/// spends most of its life in.
+struct KnobAtRest<S: Scalar> {
+    knob: Knob<S>,
+    angle: S,
+    toggle: S,
+}
+impl<S: Scalar> Bench for KnobAtRest<S> {
+    #[inline(always)]
+    fn step(&mut self) {
+        let out = self.knob.update(self.angle);
+        core::hint::black_box(out.torque);
+        self.angle = self.angle.add(self.toggle);
+        self.toggle = self.toggle.neg();
+    }
+}
+fn knob_rest_f32() -> Option<KnobAtRest<f32>> {
+    knob_rest(&stiffspring::knob!(KNOB_CONFIG, f32))
+}
+fn knob_rest_i16f16() -> Option<KnobAtRest<I16F16>> {
+    knob_rest(&stiffspring::knob!(KNOB_CONFIG, I16F16))
+}
+fn knob_rest<S: Scalar>(design: &stiffspring::knob::KnobDesign<S>) -> Option<KnobAtRest<S>> {
+    // The centre of detent 5 (16 detents over 3 rad, 0.2 rad apart), and one count of
+    // the 14-bit encoder.
+    let centre = S::from_f64(1.0);
+    Some(KnobAtRest {
+        knob: Knob::from_design(design, centre).ok()?,
+        angle: centre,
+        toggle: S::from_f64(core::f64::consts::TAU / 16384.0),
+    })
+}
+
 // ---------------------------------------------------------------------------------------
 // The table
 // ---------------------------------------------------------------------------------------
@@ -695,6 +729,8 @@ kernels! {
     "distance_2d/linearised", I16F16 => distance_2d::<I16F16, Linearised>;
     "knob_update", f32 => knob_update_f32;
     "knob_update", I16F16 => knob_update_i16f16;
+    "knob_rest", f32 => knob_rest_f32;
+    "knob_rest", I16F16 => knob_rest_i16f16;
 }
 
 // The rest of the scene kernels: each scene step is a monomorphised function of 30–70 KB,

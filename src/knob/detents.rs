@@ -274,14 +274,33 @@ impl<S: Scalar> Ladder<S> {
     /// switching threshold of the centre, or at the end of the range).
     #[inline(always)]
     fn direction(&self, angle: S) -> i32 {
-        let e = angle.sub(self.centre);
-        if e > self.threshold && self.index < self.max_index {
+        // The switching points as angles (`centre ± threshold`), not the extension
+        // against the threshold: [`Self::switching_points`] gives the knob the same
+        // points for its quiet window, so the two tests agree to the last bit.
+        if angle > self.centre.add(self.threshold) && self.index < self.max_index {
             1
-        } else if e < self.neg_threshold && self.index > self.min_index {
+        } else if angle < self.centre.add(self.neg_threshold) && self.index > self.min_index {
             -1
         } else {
             0
         }
+    }
+
+    /// The angles between which [`Self::update`] does not move the index, `(down, up)`:
+    /// `centre ± threshold`, and `∓reach` (the largest angle the knob takes) at the
+    /// ends of the range, where the index moves no further.
+    pub(crate) fn switching_points(&self, reach: S) -> (S, S) {
+        let down = if self.index > self.min_index {
+            self.centre.add(self.neg_threshold)
+        } else {
+            reach.neg()
+        };
+        let up = if self.index < self.max_index {
+            self.centre.add(self.threshold)
+        } else {
+            reach
+        };
+        (down, up)
     }
 
     /// Walks the index toward `angle`, at most `limit` detents; returns how many it

@@ -113,19 +113,12 @@ pub(crate) struct Shape<S: Scalar> {
     pub(crate) curvature: S,
 }
 
-/// The spring torque (fraction of the limit) of the three layers acting in a zone,
-/// through the zone's rest zone and knee: with `t = Σ gainᵢ·eᵢ` and `o = |t| − rest`,
-/// zero for `o ≤ 0`, `o²/(2·knee)` up to the knee, `o − knee/2` past it, signed as `t`.
+/// The spring torque (fraction of the limit) of the layers acting in a zone, through the
+/// zone's rest zone and knee: with `t = Σ gainᵢ·eᵢ` (the caller's sum of the layers'
+/// stretches times their gains) and `o = |t| − rest`, zero for `o ≤ 0`, `o²/(2·knee)` up
+/// to the knee, `o − knee/2` past it, signed as `t`.
 #[inline(always)]
-pub(crate) fn spring<S: Scalar>(
-    (detent, other, ret): (S, S, S),
-    (detent_gain, other_gain, return_gain): (S, S, S),
-    shape: &Shape<S>,
-) -> S {
-    let t = detent
-        .mul(detent_gain)
-        .add(other.mul(other_gain))
-        .add(ret.mul(return_gain));
+pub(crate) fn spring<S: Scalar>(t: S, shape: &Shape<S>) -> S {
     let over = t.abs().sub(shape.rest);
     if over > S::ZERO {
         let magnitude = if over < shape.knee {

@@ -285,13 +285,22 @@ pub struct Knob<S: Scalar> {
     ladder: Ladder<S>,
     magnets: Magnets<S>,
     beyond: Option<Endstop>,
+    /// The quiet window (`Self::period`): a reading in `[quiet_lo, quiet_hi]` makes the
+    /// common period, which takes the short path: tracking, inside the detent's
+    /// switching points and the endstops, past no endstop, without magnets. Empty
+    /// (`quiet_lo > quiet_hi`) where the period is not the common one; set again after
+    /// every period that took the long path (`Self::refresh_quiet`).
+    quiet_lo: S,
+    quiet_hi: S,
     // Reports (set-up values, in f64).
     torque_limit: f64,
     damping: f64,
     filter_time: f64,
     rest_zone: f64,
     knee: f64,
-    max_speed: Option<f64>,
+    /// [`KnobConfig::max_speed`], or 0 for none (a maximum speed is positive): eight
+    /// bytes fewer than an `Option<f64>`, which keeps the knob in the C API's handle.
+    max_speed: f64,
     zone_stiffness: [f64; 3],
     // What `loop_coefficients` derives its report from (`LoopCoefficients::of`), with
     // `zone_stiffness`, `damping` and the zones that occur (`bounded`, the magnets), in
@@ -496,12 +505,15 @@ impl<S: Scalar> Knob<S> {
             ladder: Ladder::from_parts(&p.ladder),
             magnets: Magnets::from_parts(&p.magnets),
             beyond: None,
+            // Empty until `start` sets it.
+            quiet_lo: p.reach.get(),
+            quiet_hi: p.reach.get().neg(),
             torque_limit: v.torque_limit,
             damping: v.damping,
             filter_time: p.filter_time,
             rest_zone: p.rest_zone,
             knee: p.knee,
-            max_speed: v.max_speed,
+            max_speed: v.max_speed.unwrap_or(0.0),
             // Element by element: each load from a `const` design folds to an immediate,
             // where the copy of the array was one block copy out of the design, the last
             // use that kept the whole design constant in flash (1 KB of `knob_f32_const`
@@ -557,6 +569,30 @@ impl<S: Scalar> Knob<S> {
         self.magnets.reset();
         let _ = self.magnets.update(angle);
         self.beyond = self.beyond_at(angle);
+        self.refresh_quiet();
+    }
+
+    /// Sets the quiet window (`quiet_lo`, `quiet_hi`) for the next period: the current
+    /// detent's switching points within the endstops while the period would be the common
+    /// one, and empty otherwise. One copy out of line for its four callers.
+    #[inline(never)]
+    fn refresh_quiet(&mut self) {
+        let common =
+            matches!(self.mode, Mode::Tracking) && self.beyond.is_none() && !self.magnets.any();
+        (self.quiet_lo, self.quiet_hi) = if common {
+            let (down, up) = self.ladder.switching_points(self.reach);
+            if self.bounded {
+                (
+                    if down > self.lo { down } else { self.lo },
+                    if up < self.hi { up } else { self.hi },
+                )
+            } else {
+                (down, up)
+            }
+        } else {
+            // `reach > 0`: no reading is at once at least `reach` and at most `−reach`.
+            (self.reach, self.reach.neg())
+        };
     }
 
     /// True for an angle inside the range the arithmetic holds (never for a NaN).
@@ -615,8 +651,7 @@ impl<S: Scalar> Knob<S> {
             let held = law::play(self.held, angle, self.play);
             let u = held.sub(self.held);
             self.held = held;
-            let out = self.period(angle, u);
-            self.settle_torque(out)
+            self.period(angle, u)
         } else {
             self.recover(angle)
         }
@@ -654,8 +689,7 @@ impl<S: Scalar> Knob<S> {
         if surprise.abs() <= self.gate && step.abs() <= self.max_step && self.in_reach(angle) {
             self.last_step = step;
             self.held = law::play(self.held, angle, self.play);
-            let out = self.period(angle, u);
-            self.settle_torque(out)
+            self.period(angle, u)
         } else {
             self.recover(angle)
         }
@@ -666,6 +700,13 @@ impl<S: Scalar> Knob<S> {
     #[cold]
     #[inline(never)]
     fn recover(&mut self, angle: S) -> KnobOutput<S> {
+        let out = self.recover_reading(angle);
+        self.refresh_quiet();
+        out
+    }
+
+    /// [`Self::recover`]'s decision: what a reading that failed the hot test does.
+    fn recover_reading(&mut self, angle: S) -> KnobOutput<S> {
         let fault = if angle.partial_cmp(&angle).is_none() {
             Some(SensorFault::NotANumber)
         } else if !self.in_reach(angle) {
@@ -886,6 +927,15 @@ impl<S: Scalar> Knob<S> {
         }
     }
 
+    /// One period of the law at `angle`, the play's output having moved by `u`: the
+    /// damper's filter, then the torque, kept as the last one.
+    ///
+    /// Most periods are the common one (the quiet window, `quiet_lo ..= quiet_hi`): the
+    /// knob tracking, in the free zone, its detent not switching. They take the short
+    /// path inline, two comparisons and the free zone's spring. Every other period goes
+    /// out of line to [`Self::period_zones`], which sets the window again. Both paths
+    /// give the same bits for a common period: the short one is the long one with its
+    /// tests decided.
     #[inline(always)]
     fn period(&mut self, angle: S, u: S) -> KnobOutput<S> {
         self.previous = angle;
@@ -896,6 +946,32 @@ impl<S: Scalar> Knob<S> {
             self.alpha,
             self.beta,
         );
+        if angle >= self.quiet_lo && angle <= self.quiet_hi {
+            let shape = &self.zones[FREE].shape;
+            let stretch = angle
+                .sub(self.ladder.centre())
+                .mul(self.detent_gain)
+                .add(angle.sub(self.return_centre).mul(self.return_gain));
+            let torque = law::torque(
+                law::spring(stretch, shape),
+                law::damping_torque(self.damping_state, self.unscale),
+                self.floor,
+            );
+            self.last_torque = torque;
+            KnobOutput {
+                torque,
+                detent: self.ladder.index(),
+                events: KnobEvents::default(),
+            }
+        } else {
+            self.period_zones(angle)
+        }
+    }
+
+    /// [`Self::period`] off the quiet window: the detent's switch, the magnets, the
+    /// zone and the endstops, the fade or blend; then the window for the next period.
+    #[inline(never)]
+    fn period_zones(&mut self, angle: S) -> KnobOutput<S> {
         let mut events = KnobEvents {
             detent_step: self.ladder.update(angle),
             ..KnobEvents::default()
@@ -919,30 +995,30 @@ impl<S: Scalar> Knob<S> {
         // An endstop is hit past its rest zone and knee, and again only after coming
         // back inside by the hysteresis. Its hit point lies beyond it (`hi_hit ≥ hi`,
         // `lo_hit ≤ lo`), so that a knob inside the range that was not beyond has
-        // nothing to test: the common period skips the match.
+        // nothing to test.
         if zone == BEYOND || self.beyond.is_some() {
             self.track_endstops(angle, &mut events);
         }
 
         let z = &self.zones[zone];
-        let spring = law::spring(
-            (
-                angle.sub(self.ladder.centre()),
-                other,
-                angle.sub(self.return_centre),
-            ),
-            (self.detent_gain, z.other, self.return_gain),
-            &z.shape,
-        );
-        KnobOutput {
+        // The same sum as the short path's, with the zone's own term between.
+        let stretch = angle
+            .sub(self.ladder.centre())
+            .mul(self.detent_gain)
+            .add(other.mul(z.other))
+            .add(angle.sub(self.return_centre).mul(self.return_gain));
+        let out = KnobOutput {
             torque: law::torque(
-                spring,
+                law::spring(stretch, &z.shape),
                 law::damping_torque(self.damping_state, self.unscale),
                 self.floor,
             ),
             detent: self.ladder.index(),
             events,
-        }
+        };
+        let out = self.settle_torque(out);
+        self.refresh_quiet();
+        out
     }
 
     /// The endstop's hit and release (`Self::period`): a hit past its rest zone and
@@ -1063,7 +1139,11 @@ impl<S: Scalar> Knob<S> {
     /// # Ok::<(), stiffspring::knob::KnobError>(())
     /// ```
     pub fn max_speed(&self) -> Option<f64> {
-        self.max_speed
+        if self.max_speed > 0.0 {
+            Some(self.max_speed)
+        } else {
+            None
+        }
     }
 
     /// The knee past the rest zone, radians: over it the spring rises from zero to its

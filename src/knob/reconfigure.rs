@@ -97,6 +97,8 @@ impl<S: Scalar> Knob<S> {
             S::ONE.neg()
         };
         *self = next;
+        // The mode may differ from the new knob's: the quiet window follows it.
+        self.refresh_quiet();
         Ok(())
     }
 }
