@@ -97,26 +97,48 @@ fn grid<S: Scalar>(threshold: RestThreshold) -> (f64, f64, f64, usize) {
     (worst, prediction, snap, steps)
 }
 
+/// The resting point of the grid farthest from 0, `|x₀ + v₀/c|`, px.
+fn farthest_rest() -> f64 {
+    frictions()
+        .iter()
+        .flat_map(|&(_, _, c)| SPEEDS.map(|v0| throw_rest(START, v0, c).abs()))
+        .fold(0.0, f64::max)
+}
+
+/// The spacing of floats with a `bits`-bit significand at `x > 0`: its ulp.
+fn ulp(x: f64, bits: i32) -> f64 {
+    2f64.powi(x.log2().floor() as i32 - (bits - 1))
+}
+
 /// The targets (f32 ≤ 1e−5, I16F16 ≤ 1e−4 of the throw), and what f64 and
-/// I32F32 reach: within rounding of the exact samples.
+/// I32F32 reach: within rounding of the exact samples. Writes docs/ui-motion.md's table
+/// (`target/figures/ui-motion/decay.md`).
 #[test]
 fn decay_samples_the_analytic_exponential() {
     let threshold = RestThreshold::default();
+    let far = farthest_rest();
     let mut rows = Vec::new();
-    for (name, (worst, prediction, snap, steps), bound, lsb) in [
-        ("f64", grid::<f64>(threshold), 1e-12, 0.0),
-        ("f32", grid::<f32>(threshold), 1e-5, 0.0),
+    let mut doc_rows = Vec::new();
+    // Each backend with its bound on the worst error, whether that bound is the issue's
+    // target, its last bit (0 for floats) and its significand's bits (0 for fixed point).
+    for (name, (worst, prediction, snap, steps), bound, target, lsb, bits) in [
+        ("f64", grid::<f64>(threshold), 1e-12, false, 0.0, 53),
+        ("f32", grid::<f32>(threshold), 1e-5, true, 0.0, 24),
         (
             "I32F32",
             grid::<I32F32>(threshold),
             1e-9,
+            false,
             I32F32::RESOLUTION,
+            0,
         ),
         (
             "I16F16",
             grid::<I16F16>(threshold),
             1e-4,
+            true,
             I16F16::RESOLUTION,
+            0,
         ),
     ] {
         rows.push(vec![
@@ -130,6 +152,29 @@ fn decay_samples_the_analytic_exponential() {
         // The resting point is `x₀ + v₀/c` rounded once (plus 1/c's rounding in floats).
         let ulps = if lsb > 0.0 { lsb } else { 1e-6 * 5000.0 };
         assert!(prediction <= ulps, "{name}: prediction off by {prediction}");
+        // The prediction's error in the backend's own resolution: a last bit in fixed
+        // point, an ulp of the farthest resting point in floats.
+        let resolution = if lsb > 0.0 {
+            format!("{:.2} of a last bit", prediction / lsb)
+        } else {
+            format!(
+                "{:.2} of an ulp of {}",
+                prediction / ulp(far, bits),
+                lab::table::grouped(far.round() as usize)
+            )
+        };
+        doc_rows.push(vec![
+            format!("`{name}`"),
+            sci(worst),
+            if target {
+                let met = if worst <= bound { "✓" } else { "✗" };
+                format!("≤ {bound:e} {met}")
+            } else {
+                String::new()
+            },
+            format!("{} px ({resolution})", sci(prediction)),
+            lab::table::grouped(steps),
+        ]);
     }
     println!(
         "Decay against x₀ + (v₀/c)(1 − e^{{−ct}}): {} frictions × {} rates × {} throws, from {START}",
@@ -147,6 +192,18 @@ fn decay_samples_the_analytic_exponential() {
         ],
         &rows,
     );
+    let header = [
+        "backend",
+        "worst / throw",
+        "target",
+        "resting point vs `x₀ + v₀/c`",
+        "most steps",
+    ];
+    let path = lab::table::write_figures(
+        "ui-motion/decay.md",
+        &lab::table::markdown(&header, &doc_rows),
+    );
+    println!("wrote {}", path.display());
 }
 
 /// A settled throw stops on the point given at release, and the last frame it moves

@@ -95,14 +95,40 @@ fn summarise(t: Fixed, points: &[(f64, f64)]) -> Summary {
     s
 }
 
+/// docs/stability.md's row of a [`Summary`]: runs, at rest, in a cycle, and the largest
+/// cycle with the tuning it came from.
+fn doc_row(t: Fixed, region: &str, s: &Summary) -> Vec<String> {
+    let largest = if s.cycles == 0 {
+        "—".to_string()
+    } else {
+        format!(
+            "{}, {} at `C_k = {:.1}`, `C_d = {}`",
+            lab::table::grouped(s.worst_cycle.0),
+            lab::table::grouped(s.worst_cycle.1),
+            s.worst_at.0,
+            s.worst_at.1
+        )
+    };
+    vec![
+        format!("`{t:?}`"),
+        region.to_string(),
+        lab::table::grouped(s.runs),
+        lab::table::grouped(s.rests),
+        lab::table::grouped(s.cycles),
+        largest,
+    ]
+}
+
 /// In the square every start ends at rest inside the dead band `|x| < 1/C_k` state LSB;
-/// beyond it, a few end in cycles of a few hundred state LSB at most (`2⁻²⁴` or `2⁻³²` of a
-/// position's last bit each): invisible, and inside a value's rest band.
+/// beyond it, some end in cycles of a few thousand state LSB at most (below `2¹²`, each
+/// `2⁻²⁴` or `2⁻³²` of a position's last bit): invisible, and inside a value's rest band.
+/// Writes docs/stability.md's table (`target/figures/stability/fixed-point-limits.md`).
 #[test]
 fn the_step_rests_in_the_square_and_cycles_far_below_a_last_bit_beyond_it() {
     println!(
         "backend region     runs  rest  cycle  unresolved  worst |C_k·x| at rest  worst cycle p-p x, |ũ| (state LSB) at (C_k, C_d)"
     );
+    let mut rows = Vec::new();
     for t in [Fixed::I16F16, Fixed::I32F32] {
         let square = summarise(t, &grid(true));
         let beyond = summarise(t, &grid(false));
@@ -119,6 +145,8 @@ fn the_step_rests_in_the_square_and_cycles_far_below_a_last_bit_beyond_it() {
                 s.worst_at
             );
         }
+        rows.push(doc_row(t, "square", &square));
+        rows.push(doc_row(t, "beyond", &beyond));
         assert_eq!(
             (square.rests, square.runs),
             (square.runs, 6 * grid(true).len())
@@ -131,6 +159,19 @@ fn the_step_rests_in_the_square_and_cycles_far_below_a_last_bit_beyond_it() {
             "{beyond:?}"
         );
     }
+    let header = [
+        "backend",
+        "region",
+        "runs",
+        "at rest",
+        "in a cycle",
+        "largest cycle (state last bits): `x` peak to peak, largest `\\|ũ\\|` on a cycle",
+    ];
+    let path = lab::table::write_figures(
+        "stability/fixed-point-limits.md",
+        &lab::table::markdown(&header, &rows),
+    );
+    println!("wrote {}", path.display());
 }
 
 /// Beyond the square a value still comes to rest, even with a threshold far below its last

@@ -88,6 +88,36 @@ fn report(name: &str, t: &Totals) {
     );
 }
 
+/// The columns of docs/knob.md's sweep tables ([`row`]).
+const HEADER: [&str; 9] = [
+    "backend",
+    "configurations",
+    "refused",
+    "runs",
+    "runs the backend refused",
+    "oscillating",
+    "largest swing of a quiet run (counts)",
+    "most endstop hits in a run",
+    "largest torque (of the limit)",
+];
+
+/// A row of docs/knob.md's sweep tables: the backend and what its sweep measured.
+fn row(name: &str, t: &Totals) -> Vec<String> {
+    vec![
+        format!("`{name}`"),
+        lab::table::grouped(t.configs),
+        lab::table::grouped(t.rejected),
+        lab::table::grouped(t.runs),
+        lab::table::grouped(t.backend_rejected),
+        format!("**{}**", t.oscillating),
+        lab::table::grouped(t.worst_quiet_pp),
+        lab::table::grouped(t.most_hits),
+        format!("{:.3}", t.max_fraction),
+    ]
+}
+
+/// The short grid in every backend; writes docs/knob.md's table ("The sweep of issue
+/// 13"), which scripts/check-figures checks.
 #[test]
 fn short_sweep_has_no_oscillating_configuration() {
     let t = sweep::<f64>(&SHORT, 1.0);
@@ -97,6 +127,7 @@ fn short_sweep_has_no_oscillating_configuration() {
     assert_eq!(t.rejected + t.backend_rejected, 0);
     assert_eq!(t.runs, 2_688);
     assert!(t.max_fraction <= 1.0);
+    let mut rows = vec![row("f64", &t)];
     for (name, t) in [
         ("f32", sweep::<f32>(&SHORT, 1.0)),
         ("I16F16", sweep::<I16F16>(&SHORT, 1.0)),
@@ -104,7 +135,11 @@ fn short_sweep_has_no_oscillating_configuration() {
         report(name, &t);
         assert_eq!(t.oscillating, 0, "{name}: {:?}", t.worst);
         assert!(t.max_fraction <= 1.0, "{name}");
+        rows.push(row(name, &t));
     }
+    let path =
+        lab::table::write_figures("knob/sweep-short.md", &lab::table::markdown(&HEADER, &rows));
+    println!("wrote {}", path.display());
 }
 
 /// Ignored in a plain `cargo test` (minutes of run time); run it with
@@ -114,6 +149,12 @@ fn short_sweep_has_no_oscillating_configuration() {
 fn full_sweep_has_no_oscillating_configuration() {
     let t = sweep::<f64>(&FULL, 1.0);
     report("f64, full grid", &t);
+    // docs/knob.md's table of the full sweep, checked by `scripts/check-figures --long`.
+    let path = lab::table::write_figures(
+        "knob/sweep-full.md",
+        &lab::table::markdown(&HEADER, &[row("f64", &t)]),
+    );
+    println!("wrote {}", path.display());
     assert_eq!(t.oscillating, 0, "{:?}", t.worst);
     assert!(t.max_fraction <= 1.0);
 }

@@ -97,11 +97,14 @@ fn undamped_run<S: Scalar>(k: f64, x0: f64, steps: usize) -> (f64, f64) {
     (worst, (last - first) / h0)
 }
 
-/// Undamped values in every backend: the stiffnesses of a UI spring at 60 Hz to a knob
-/// at 1 kHz, amplitude 100.
+/// The stiffnesses `C_k` of the undamped runs, from a UI spring at 60 Hz to a knob at
+/// 1 kHz, in increasing order.
+const STIFFNESSES: [f64; 6] = [1e-3, 0.01, 0.1, 0.5, 1.0, 2.5];
+
+/// Undamped values in every backend: [`STIFFNESSES`], amplitude 100.
 fn undamped_table(steps: usize) -> Vec<(String, f64, f64, f64)> {
     let mut rows = Vec::new();
-    for k in [1e-3, 0.01, 0.1, 0.5, 1.0, 2.5] {
+    for k in STIFFNESSES {
         let run = |name: &str, (w, d): (f64, f64)| (name.to_string(), k, w, d);
         rows.push(run("f64", undamped_run::<f64>(k, 100.0, steps)));
         rows.push(run("f32", undamped_run::<f32>(k, 100.0, steps)));
@@ -111,9 +114,11 @@ fn undamped_table(steps: usize) -> Vec<(String, f64, f64, f64)> {
     rows
 }
 
-fn check_undamped(steps: usize) {
+/// Checks [`undamped_table`]'s rows and returns them.
+fn check_undamped(steps: usize) -> Vec<(String, f64, f64, f64)> {
     println!("backend  C_k     max |H−H₀|/H₀   drift of mean H over {steps} steps");
-    for (name, k, worst, drift) in undamped_table(steps) {
+    let rows = undamped_table(steps);
+    for (name, k, worst, drift) in rows.iter().cloned() {
         println!("{name:<8} {k:<7} {worst:>12.2e}   {drift:>+12.2e}");
         // Floats: a band of rounding size, and no drift beyond it (f32's is a random walk
         // of either sign). Fixed point: the reads of the state (half a last bit of x and u,
@@ -129,17 +134,73 @@ fn check_undamped(steps: usize) {
             "{name} C_k = {k}: H strays {worst:e}, drifts {drift:e}"
         );
     }
+    rows
 }
 
+/// `v > 0` rounded up to two significant figures, strictly above it: `4.99e-14` is
+/// `5.0e-14`, `5e-14` is `5.1e-14` (the figure a "below" states).
+fn sci_above(v: f64) -> String {
+    let shortest = format!("{v:e}");
+    let (mantissa, exponent) = shortest.split_once('e').expect("`{:e}` has an exponent");
+    let (mantissa, exponent): (f64, i32) = (
+        mantissa.parse().expect("a mantissa"),
+        exponent.parse().expect("an exponent"),
+    );
+    let tenths = (mantissa * 10.0).floor() + 1.0;
+    if tenths >= 100.0 {
+        format!("1.0e{}", exponent + 1)
+    } else {
+        format!("{:.1}e{exponent}", tenths / 10.0)
+    }
+}
+
+/// docs/stability.md's table of the undamped runs: per backend, the range of the largest
+/// `|H − H₀|/H₀` over the stiffnesses (but `C_k = 1`, whose four exact states lose
+/// nothing) and a bound on the drift of the mean.
+fn undamped_doc_table(rows: &[(String, f64, f64, f64)]) -> String {
+    let mut out = Vec::new();
+    for backend in ["f64", "f32", "I32F32", "I16F16"] {
+        let mine = rows.iter().filter(|r| r.0 == backend);
+        let (mut lo, mut hi, mut drift) = (f64::INFINITY, 0.0f64, 0.0f64);
+        for (_, k, worst, d) in mine {
+            if *k == 1.0 {
+                assert_eq!((*worst, *d), (0.0, 0.0), "{backend}: C_k = 1 is exact");
+                continue;
+            }
+            (lo, hi, drift) = (lo.min(*worst), hi.max(*worst), drift.max(d.abs()));
+        }
+        out.push(vec![
+            format!("`{backend}`"),
+            format!("{} to {}", lab::table::sci(lo), lab::table::sci(hi)),
+            if drift == 0.0 {
+                "0".to_string()
+            } else {
+                format!("below {}", sci_above(drift))
+            },
+        ]);
+    }
+    let (k_lo, k_hi) = (STIFFNESSES[0], STIFFNESSES[STIFFNESSES.len() - 1]);
+    let header = [
+        "backend".to_string(),
+        format!("largest `\\|H − H₀\\|/H₀`, `C_k` from {k_lo} to {k_hi}"),
+        "drift of the mean of `H`".to_string(),
+    ];
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    lab::table::markdown(&header, &out)
+}
+
+/// Writes docs/stability.md's table (`target/figures/stability/long-runs.md`).
 #[test]
 fn undamped_spring_keeps_its_invariant_over_1e5_steps() {
-    check_undamped(100_000);
+    let rows = check_undamped(100_000);
+    let path = lab::table::write_figures("stability/long-runs.md", &undamped_doc_table(&rows));
+    println!("wrote {}", path.display());
 }
 
 #[test]
 #[ignore = "10⁶ steps per row: `cargo test --release --test long_runs -- --ignored --nocapture`"]
 fn undamped_spring_keeps_its_invariant_over_1e6_steps() {
-    check_undamped(MILLION);
+    let _ = check_undamped(MILLION);
 }
 
 // ---------------------------------------------------------------------------

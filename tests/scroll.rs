@@ -175,7 +175,8 @@ fn snaps<S: Scalar>() -> Worst {
 
 /// The targets: a throw into a bound and a snap have no velocity jump (≤ 1e−6 of
 /// the velocity) and rest exactly on the bound or snap point; every sample on the
-/// continuous motion (f32 ≤ 1e−5, I16F16 ≤ 1e−4 of the travel).
+/// continuous motion (f32 ≤ 1e−5, I16F16 ≤ 1e−4 of the travel). Writes docs/ui-motion.md's
+/// table (`target/figures/ui-motion/scroll.md`).
 #[test]
 fn throws_hand_over_at_bounds_and_snap_without_a_velocity_jump() {
     let mut rows = Vec::new();
@@ -216,18 +217,23 @@ fn throws_hand_over_at_bounds_and_snap_without_a_velocity_jump() {
         throws::<f64>().runs,
         snaps::<f64>().runs
     );
-    print(
-        &[
-            "backend",
-            "bound: x / travel",
-            "v / v₀",
-            "velocity jump",
-            "snap: x / travel",
-            "v / v₀",
-            "velocity jump",
-        ],
-        &rows,
-    );
+    let header = [
+        "backend",
+        "bound: x / travel",
+        "v / v₀",
+        "velocity jump",
+        "snap: x / travel",
+        "v / v₀",
+        "velocity jump",
+    ];
+    print(&header, &rows);
+    // The docs' copy: the same rows, the backend as code.
+    for row in &mut rows {
+        row[0] = format!("`{}`", row[0]);
+    }
+    let path =
+        lab::table::write_figures("ui-motion/scroll.md", &lab::table::markdown(&header, &rows));
+    println!("wrote {}", path.display());
 }
 
 /// A drag past an end moves the content by iOS's rubber band, less than the finger, and

@@ -42,6 +42,19 @@ pub fn sci(v: f64) -> String {
     }
 }
 
+/// A whole number with thousands commas, as the docs write them: `1,452`.
+pub fn grouped(n: impl ToString) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, d) in digits.chars().enumerate() {
+        if i > 0 && d.is_ascii_digit() && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(d);
+    }
+    out
+}
+
 /// Writes `text` to `target/figures/NAME` in the workspace: the file a test or a tool
 /// generates for a figures block of the docs (`scripts/check-figures` compares them), and
 /// the path, for the test's output.
