@@ -153,4 +153,33 @@ fn every_backend_follows_the_reference() {
             );
         }
     }
+    // docs/accuracy.md's table.
+    let table: Vec<Vec<String>> = rows
+        .iter()
+        .map(|(name, got, bound)| {
+            let mut row = vec![format!("`{name}`")];
+            row.extend(got.iter().map(|&v| lab::table::sci(v)));
+            row.push(
+                bound
+                    .iter()
+                    .map(|b| format!("{b:.0e}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            );
+            row
+        })
+        .collect();
+    let header = [
+        "backend",
+        "impulse form",
+        "force form",
+        "two-body kernel",
+        "momentum drift",
+        "bounds asserted",
+    ];
+    let path = lab::table::write_figures(
+        "accuracy/backends-vs-reference.md",
+        &lab::table::markdown(&header, &table),
+    );
+    println!("wrote {}", path.display());
 }

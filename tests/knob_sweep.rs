@@ -86,6 +86,7 @@ fn report(name: &str, t: &Totals) {
         t.most_hits,
         t.max_fraction
     );
+    println!("{name}: the most endstop hits: {}", t.most_hits_run);
 }
 
 /// The columns of docs/knob.md's sweep tables ([`row`]).
@@ -143,9 +144,11 @@ fn short_sweep_has_no_oscillating_configuration() {
 }
 
 /// Ignored in a plain `cargo test` (minutes of run time); run it with
-/// `cargo test --release --test knob_sweep -- --ignored --nocapture`.
+/// `cargo test --release --test knob_sweep -- --ignored --nocapture`. Fails today: one run
+/// of the grid oscillates at 9 counts peak to peak (docs/knob.md, "The sweep of issue
+/// 13"); the table is written before the assertion.
 #[test]
-#[ignore]
+#[ignore = "minutes of run time; one run oscillates at 9 counts (docs/knob.md)"]
 fn full_sweep_has_no_oscillating_configuration() {
     let t = sweep::<f64>(&FULL, 1.0);
     report("f64, full grid", &t);

@@ -157,8 +157,39 @@ fn run<S: Scalar>(case: &Case) -> Band {
     band
 }
 
-fn check(steps: usize) {
+/// What a backend did over the 16 cases: the least and the largest end value, and the
+/// least and the largest value along the runs.
+#[derive(Clone, Copy, Debug)]
+struct Spread {
+    end: (f64, f64),
+    band: (f64, f64),
+}
+
+impl Spread {
+    const EMPTY: Spread = Spread {
+        end: (f64::INFINITY, f64::NEG_INFINITY),
+        band: (f64::INFINITY, f64::NEG_INFINITY),
+    };
+
+    fn add(&mut self, band: &Band) {
+        self.end = (self.end.0.min(band.end), self.end.1.max(band.end));
+        self.band = (self.band.0.min(band.least), self.band.1.max(band.largest));
+    }
+}
+
+/// The backends of [`check`]'s [`Spread`]s, and the target each is held to.
+const BACKENDS: [(&str, f64); 4] = [
+    ("f64", 0.0),
+    ("f32", 0.01),
+    ("I32F32", 0.01),
+    ("I16F16", 0.05),
+];
+
+/// Runs the 16 cases `steps` steps in every backend, asserts them, and returns each
+/// backend's [`Spread`] (in the order of [`BACKENDS`]).
+fn check(steps: usize) -> [Spread; 4] {
     let mut failures = Vec::new();
+    let mut spreads = [Spread::EMPTY; 4];
     for start in [Start::Still(0.5), Start::Moving(0.5, 1.0)] {
         for rate in [60.0, 1000.0] {
             for ck in [0.01, 0.1] {
@@ -171,15 +202,18 @@ fn check(steps: usize) {
                         steps,
                     };
                     let exact = run::<f64>(&case);
+                    spreads[0].add(&exact);
                     println!(
                         "{:<7} {stepper:<11?} {rate:>5} Hz C_k {ck:<5} {start:?}: H/H₀ = {:.5} (band {:.5} to {:.5})",
                         "f64", exact.end, exact.least, exact.largest
                     );
-                    for (name, band, allowed) in [
-                        ("f32", run::<f32>(&case), 0.01),
-                        ("I32F32", run::<I32F32>(&case), 0.01),
-                        ("I16F16", run::<I16F16>(&case), 0.05),
+                    for (i, band) in [
+                        (1, run::<f32>(&case)),
+                        (2, run::<I32F32>(&case)),
+                        (3, run::<I16F16>(&case)),
                     ] {
+                        let (name, allowed) = BACKENDS[i];
+                        spreads[i].add(&band);
                         println!(
                             "{name:<7} {stepper:<11?} {rate:>5} Hz C_k {ck:<5} {start:?}: H/H₀ = {:.5} (band {:.5} to {:.5})",
                             band.end, band.least, band.largest
@@ -202,15 +236,64 @@ fn check(steps: usize) {
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+    spreads
+}
+
+/// Writes the docs' tables of a run: docs/networks.md's (`networks/energy-NAME.md`: the
+/// end values and, in brackets, the band along the runs) and docs/accuracy.md's
+/// (`accuracy/energy-NAME.md`: the end values, in bold where one lies outside its
+/// backend's target of 1).
+fn write_tables(name: &str, spreads: &[Spread; 4], labels: [&str; 2], command: &str) {
+    let range = |(lo, hi): (f64, f64)| format!("{lo:.4} to {hi:.4}");
+    let marked = |v: f64, allowed: f64| {
+        if allowed > 0.0 && (v - 1.0).abs() > allowed {
+            format!("**{v:.4}**")
+        } else {
+            format!("{v:.4}")
+        }
+    };
+    let header = ["steps", "f64", "f32", "I32F32", "I16F16", "command"];
+    let command = format!("`{command}`");
+    let mut networks = vec![labels[0].to_string()];
+    let mut accuracy = vec![labels[1].to_string()];
+    for (s, (_, allowed)) in spreads.iter().zip(BACKENDS) {
+        networks.push(format!("{} ({})", range(s.end), range(s.band)));
+        accuracy.push(format!(
+            "{} to {}",
+            marked(s.end.0, allowed),
+            marked(s.end.1, allowed)
+        ));
+    }
+    networks.push(command.clone());
+    accuracy.push(command);
+    for (doc, row) in [("networks", networks), ("accuracy", accuracy)] {
+        let path = lab::table::write_figures(
+            &format!("{doc}/energy-{name}.md"),
+            &lab::table::markdown(&header, &[row]),
+        );
+        println!("wrote {}", path.display());
+    }
 }
 
 #[test]
 fn a_free_undamped_rope_keeps_its_energy_over_1e5_steps() {
-    check(100_000);
+    let spreads = check(100_000);
+    write_tables(
+        "1e5",
+        &spreads,
+        ["10⁵", "10⁵"],
+        "cargo test --release --test network_energy -- --nocapture",
+    );
 }
 
 #[test]
 #[ignore = "10⁶ steps per row, a minute: `cargo test --release --test network_energy -- --ignored --nocapture one_million`"]
 fn a_free_undamped_rope_keeps_its_energy_over_one_million_steps() {
-    check(1_000_000);
+    let spreads = check(1_000_000);
+    write_tables(
+        "1e6",
+        &spreads,
+        ["10⁶ (ignored)", "10⁶ (ignored by default)"],
+        "cargo test --release --test network_energy -- --ignored --nocapture one_million",
+    );
 }

@@ -146,13 +146,50 @@ fn settled<S: Scalar>() -> Ropes<S> {
     ropes
 }
 
+/// The steps of [`sleeping_saves_work`]'s run: 30 s at 120 Hz.
+const SAVING_STEPS: usize = 3600;
+
+/// What sleeping saved in one backend: the work of a step with all ropes awake and with
+/// the nine at rest asleep, the seconds until all nine slept, and the work over the
+/// whole run without and with sleeping.
+struct Saving {
+    backend: &'static str,
+    before: usize,
+    after: usize,
+    all_asleep_after: f64,
+    without: usize,
+    with: usize,
+}
+
+impl Saving {
+    /// The docs' cells: work per step, all asleep after, work over the run.
+    fn cells(&self) -> Vec<String> {
+        let saved = |a: usize, b: usize| 100.0 * (1.0 - b as f64 / a as f64);
+        vec![
+            format!(
+                "{} → {} ({:.0} % saved)",
+                self.before,
+                self.after,
+                saved(self.before, self.after)
+            ),
+            format!("{:.1} s", self.all_asleep_after),
+            format!(
+                "{} → {} ({:.0} % saved)",
+                lab::table::grouped(self.without),
+                lab::table::grouped(self.with),
+                saved(self.without, self.with)
+            ),
+        ]
+    }
+}
+
 /// Sleeping saves the work of the ropes at rest; the figure for the docs.
-fn sleeping_saves_work<S: Scalar>() -> String {
+fn sleeping_saves_work<S: Scalar>() -> Saving {
     let (mut sleeping, mut always) = (Ropes::<S>::new(true), Ropes::<S>::new(false));
     let (mut with, mut without) = (0, 0);
     let mut fell_asleep_at = None;
     let mut reported = Vec::new();
-    for step in 0..3600 {
+    for step in 0..SAVING_STEPS {
         with += work(sleeping.scene.active());
         without += work(always.scene.active());
         // The step reports what it moved and what fell asleep, and names them.
@@ -183,14 +220,14 @@ fn sleeping_saves_work<S: Scalar>() -> String {
         );
     }
     assert_eq!(after * ROPES, before, "{}", S::NAME);
-    format!(
-        "| {} | {} | {before} → {after} ({:.0} % saved) | {:.1} s | {without} → {with} ({:.0} % saved) |",
-        S::NAME,
-        ROPES - 1,
-        100.0 * (1.0 - after as f64 / before as f64),
-        fell_asleep_at.unwrap() as f64 / 120.0,
-        100.0 * (1.0 - with as f64 / without as f64),
-    )
+    Saving {
+        backend: S::NAME,
+        before,
+        after,
+        all_asleep_after: fell_asleep_at.unwrap() as f64 * ROPE_DT,
+        without,
+        with,
+    }
 }
 
 #[test]
@@ -201,13 +238,47 @@ fn ropes_at_rest_fall_asleep_and_cost_nothing() {
         sleeping_saves_work::<I32F32>(),
         sleeping_saves_work::<I16F16>(),
     ];
+    let printed: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            format!(
+                "| {} | {} | {} |",
+                r.backend,
+                ROPES - 1,
+                r.cells().join(" | ")
+            )
+        })
+        .collect();
     println!(
         "\nTen ropes of 5 particles + 5 springs under gravity, 9 hanging at rest, 1 swinging, \
          120 Hz, default sleep threshold (1 mm/s for 0.5 s). Work = awake particles + stepped springs.\n\
          | backend | ropes asleep | work per step, all awake → 9 asleep | all 9 asleep after | work over 30 s, no sleep → sleep |\n\
          |---|---|---|---|---|\n{}",
-        rows.join("\n")
+        printed.join("\n")
     );
+    // docs/networks.md's table: backends with the same figures share a row.
+    let mut table: Vec<Vec<String>> = Vec::new();
+    for r in &rows {
+        let cells = r.cells();
+        match table.last_mut() {
+            Some(last) if last[1..] == cells[..] => last[0] = format!("{}, {}", last[0], r.backend),
+            _ => table.push([vec![r.backend.to_string()], cells].concat()),
+        }
+    }
+    let header = [
+        "backend",
+        &format!("work per step, all awake → {} asleep", ROPES - 1),
+        &format!("all {} asleep after", ROPES - 1),
+        &format!(
+            "work over {} s, without → with sleeping",
+            SAVING_STEPS as f64 * ROPE_DT
+        ),
+    ];
+    let path = lab::table::write_figures(
+        "networks/sleeping.md",
+        &lab::table::markdown(&header, &table),
+    );
+    println!("wrote {}", path.display());
 }
 
 /// Sleeping particles are not stepped: bit-identical positions, with gravity on.

@@ -54,33 +54,98 @@ fn decay_error<S: Scalar>(c: f64, v: f64, dt: f64, steps: usize) -> (f64, f64) {
     (position, velocity)
 }
 
+/// The flung particle's cases `(dt, c)`: 60 Hz to 10 kHz, drags 0.5 to 20 per second.
+const DECAY_CASES: [(f64, f64); 3] = [(1.0 / 60.0, 4.0), (1e-3, 0.5), (1e-4, 20.0)];
+/// The flung particle's speed and run (seconds).
+const FLUNG: f64 = 2.0;
+const DECAY_SECONDS: f64 = 3.0;
+
 #[test]
 fn a_flung_particle_follows_the_exact_decay_in_every_backend() {
-    // (backend, position bound, velocity bound) relative to the travel and the speed.
-    for (dt, c) in [(1.0 / 60.0, 4.0), (1e-3, 0.5), (1e-4, 20.0)] {
-        let steps = (3.0 / dt) as usize;
+    // Per backend the worst (position, velocity) error over the cases, and the travel
+    // `v/c` of the case of the worst position error.
+    let mut worst = [(0.0f64, 0.0f64, 0.0f64); 4];
+    for (dt, c) in DECAY_CASES {
+        let steps = (DECAY_SECONDS / dt) as usize;
+        // (backend, position bound, velocity bound) relative to the travel and the speed.
         let errors = [
-            ("f64", decay_error::<f64>(c, 2.0, dt, steps), 1e-12, 1e-12),
-            ("f32", decay_error::<f32>(c, 2.0, dt, steps), 1e-5, 1e-5),
+            ("f64", decay_error::<f64>(c, FLUNG, dt, steps), 1e-12, 1e-12),
+            ("f32", decay_error::<f32>(c, FLUNG, dt, steps), 1e-5, 1e-5),
             (
                 "I32F32",
-                decay_error::<I32F32>(c, 2.0, dt, steps),
+                decay_error::<I32F32>(c, FLUNG, dt, steps),
                 1e-8,
                 1e-8,
             ),
             // A position's last bit (1.5e−5) against a travel of 2/c.
             (
                 "I16F16",
-                decay_error::<I16F16>(c, 2.0, dt, steps),
+                decay_error::<I16F16>(c, FLUNG, dt, steps),
                 2e-4,
                 1e-4,
             ),
         ];
-        for (name, (x, v), bx, bv) in errors {
+        for (i, (name, (x, v), bx, bv)) in errors.into_iter().enumerate() {
             println!("decay c = {c}/s at dt = {dt}: {name}: position {x:.1e}, velocity {v:.1e}");
             assert!(x <= bx && v <= bv, "{name} c = {c} dt = {dt}: {x} {v}");
+            let w = &mut worst[i];
+            if x > w.0 {
+                (w.0, w.2) = (x, FLUNG / c);
+            }
+            w.1 = w.1.max(v);
         }
     }
+    // docs/networks.md's table.
+    let (lo, hi) = DECAY_CASES
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), &(_, c)| {
+            (lo.min(c), hi.max(c))
+        });
+    let rates: Vec<f64> = DECAY_CASES
+        .iter()
+        .map(|&(dt, _)| (1.0 / dt).round())
+        .collect();
+    let rate = |hz: f64| {
+        if hz >= 1000.0 {
+            format!("{} kHz", hz / 1000.0)
+        } else {
+            format!("{hz} Hz")
+        }
+    };
+    let (slow, fast) = (
+        rates.iter().copied().fold(f64::INFINITY, f64::min),
+        rates.iter().copied().fold(0.0, f64::max),
+    );
+    let cells = |i: usize, position: bool| {
+        let v = if position { worst[i].0 } else { worst[i].1 };
+        let mut cell = lab::table::sci(v);
+        // I16F16's position error is its last bit against a short travel.
+        if i == 3 && position {
+            cell.push_str(&format!(
+                " (a last bit: {} against a travel of {})",
+                lab::table::sci(2f64.powi(-16)),
+                worst[i].2
+            ));
+        }
+        cell
+    };
+    let mut position = vec![format!(
+        "a free particle flung at {FLUNG} units/s, drag {lo}–{hi} /s, {}–{}, {DECAY_SECONDS} s: \
+         position against `v·(1 − e^{{−c·t}})/c`, relative to the travel `v/c`",
+        rate(slow),
+        rate(fast)
+    )];
+    let mut velocity = vec!["the same, velocity against `v·e^{−c·t}`, relative to `v`".to_string()];
+    for i in 0..4 {
+        position.push(cells(i, true));
+        velocity.push(cells(i, false));
+    }
+    let header = ["what", "f64", "f32", "I32F32", "I16F16"];
+    let path = lab::table::write_figures(
+        "networks/drag-decay.md",
+        &lab::table::markdown(&header, &[position, velocity]),
+    );
+    println!("wrote {}", path.display());
 }
 
 /// A rope of 20 particles, 5 cm apart, pinned at one end, at 240 Hz, sleeping by
@@ -141,6 +206,7 @@ fn released_rope<S: Scalar>(drag: f64, limit: f64) -> (Option<f64>, f64) {
 
 #[test]
 fn a_released_rope_with_the_documented_drag_sleeps_within_three_seconds() {
+    let mut dragged = vec![format!("`c = {ROPE_DRAG}`")];
     for (name, (asleep, tip)) in [
         ("f32", released_rope::<f32>(ROPE_DRAG, 3.0)),
         ("I16F16", released_rope::<I16F16>(ROPE_DRAG, 3.0)),
@@ -150,15 +216,32 @@ fn a_released_rope_with_the_documented_drag_sleeps_within_three_seconds() {
             asleep.is_some_and(|t| t <= 3.0),
             "{name}: {asleep:?}, tip {tip}"
         );
+        dragged.push(format!(
+            "asleep {:.2} s after the release",
+            asleep.expect("asserted")
+        ));
     }
     // Without drag the rope still swings a minute later (its springs damp only stretching).
+    let limit = 60.0;
+    let mut free = vec!["none".to_string()];
     for (name, (asleep, tip)) in [
-        ("f32", released_rope::<f32>(0.0, 60.0)),
-        ("I16F16", released_rope::<I16F16>(0.0, 60.0)),
+        ("f32", released_rope::<f32>(0.0, limit)),
+        ("I16F16", released_rope::<I16F16>(0.0, limit)),
     ] {
         println!("{name}, no drag: asleep {asleep:?}, tip up to {tip:.2} m/s in the 60th second");
         assert!(asleep.is_none() && tip > 0.1, "{name}: {asleep:?} {tip}");
+        free.push(if free.len() == 1 {
+            format!("still swinging after {limit} s (tip at {tip:.2} m/s in the {limit}th second)")
+        } else {
+            format!("still swinging after {limit} s ({tip:.2} m/s)")
+        });
     }
+    // docs/networks.md's table.
+    let path = lab::table::write_figures(
+        "networks/drag-rope.md",
+        &lab::table::markdown(&["drag", "f32", "I16F16"], &[free, dragged]),
+    );
+    println!("wrote {}", path.display());
 }
 
 #[test]

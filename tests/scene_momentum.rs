@@ -173,6 +173,8 @@ fn free_networks_conserve_momentum_to_rounding() {
         ("I16F16", 2f64.powi(-40), false, [5e-8, 2e-8]),
     ];
     let mut failures = Vec::new();
+    // (backend, equal masses?, |Δp|/Σm|v|, |Δp| in last bits per step) of every run.
+    let mut measured: Vec<(&str, bool, f64, Option<f64>)> = Vec::new();
     for stepper in [Stepper::GaussSeidel, Stepper::Jacobi] {
         for equal in [true, false] {
             let results = [
@@ -185,11 +187,9 @@ fn free_networks_conserve_momentum_to_rounding() {
                 let (_, lsb, _, bound) =
                     *bounds.iter().find(|b| b.0 == name && b.2 == equal).unwrap();
                 // One last bit of step velocity on a unit mass is lsb/dt of momentum.
-                let per_step = if lsb > 0.0 {
-                    format!("{:.3}", dp * DT / lsb / STEPS as f64)
-                } else {
-                    "-".into()
-                };
+                let bits = (lsb > 0.0).then(|| dp * DT / lsb / STEPS as f64);
+                measured.push((name, equal, rel, bits));
+                let per_step = bits.map_or("-".into(), |b| format!("{b:.3}"));
                 let _ = writeln!(
                     out,
                     "| {name} | {stepper:?} | {} | {dp:.2e} | {rel:.2e} | {ang:.2e} | {per_step} |",
@@ -203,4 +203,74 @@ fn free_networks_conserve_momentum_to_rounding() {
     }
     println!("{out}");
     assert!(failures.is_empty(), "{failures:#?}");
+    write_tables(&measured, &bounds);
+}
+
+/// docs/networks.md's and docs/accuracy.md's tables (`networks/momentum.md`,
+/// `accuracy/momentum.md`): per backend the largest `|Δp|/Σm|v|` of both steppers, with
+/// equal and with unequal masses (and in accuracy.md the bounds asserted). An exact zero
+/// is bold; `I32F32` with equal masses is the `f64` reading of its state; `I16F16`'s
+/// unequal drift is also given in state last bits per step.
+fn write_tables(
+    measured: &[(&str, bool, f64, Option<f64>)],
+    bounds: &[(&str, f64, bool, [f64; 2])],
+) {
+    let (mut networks, mut accuracy) = (Vec::new(), Vec::new());
+    for name in ["f64", "f32", "I32F32", "I16F16"] {
+        let (mut net_row, mut acc_row) = (vec![name.to_string()], vec![format!("`{name}`")]);
+        for equal in [true, false] {
+            let runs: Vec<_> = measured
+                .iter()
+                .filter(|m| m.0 == name && m.1 == equal)
+                .collect();
+            let worst = runs.iter().map(|m| m.2).fold(0.0, f64::max);
+            let bits: Vec<f64> = runs.iter().filter_map(|m| m.3).collect();
+            let (least, most) = bits
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |(l, h), &b| (l.min(b), h.max(b)));
+            let (mut net, mut acc) = if worst == 0.0 {
+                ("**0**".to_string(), "**0**, to the bit".to_string())
+            } else {
+                (lab::table::sci(worst), lab::table::sci(worst))
+            };
+            if name == "I32F32" && equal {
+                net.push_str(" (the f64 reading of its Q64.64 state)");
+                acc.push_str(" (the `f64` reading of its state)");
+            }
+            if worst > 0.0 && !bits.is_empty() {
+                net.push_str(&format!(
+                    " ({least:.2} to {most:.2} of a state's last bit per step)"
+                ));
+                acc.push_str(&format!(
+                    " ({least:.2}–{most:.2} of a state's last bit per step)"
+                ));
+            }
+            let (_, _, _, bound) = bounds
+                .iter()
+                .find(|b| b.0 == name && b.2 == equal)
+                .expect("a bound for every run");
+            net_row.push(net);
+            acc_row.push(acc);
+            acc_row.push(if bound[0] == 0.0 {
+                "0".to_string()
+            } else {
+                format!("{:.0e}", bound[0])
+            });
+        }
+        networks.push(net_row);
+        accuracy.push(acc_row);
+    }
+    let path = lab::table::write_figures(
+        "networks/momentum.md",
+        &lab::table::markdown(&["backend", "equal masses", "masses 0.25 to 4"], &networks),
+    );
+    println!("wrote {}", path.display());
+    let path = lab::table::write_figures(
+        "accuracy/momentum.md",
+        &lab::table::markdown(
+            &["backend", "equal masses", "bound", "masses 0.25–4", "bound"],
+            &accuracy,
+        ),
+    );
+    println!("wrote {}", path.display());
 }

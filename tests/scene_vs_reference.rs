@@ -224,14 +224,27 @@ fn row<S: Scalar, L: LengthKernel<S>, const D: usize>(
     }
 }
 
+/// Every backend with the exact distance kernel, one stepper.
+fn exact_rows<const D: usize>(
+    net: &Network<D>,
+    dt: f64,
+    steps: usize,
+    size: f64,
+    stepper: Stepper,
+) -> Vec<Row> {
+    vec![
+        row::<f64, Exact, D>(net, dt, steps, size, stepper),
+        row::<f32, Exact, D>(net, dt, steps, size, stepper),
+        row::<I32F32, Exact, D>(net, dt, steps, size, stepper),
+        row::<I16F16, Exact, D>(net, dt, steps, size, stepper),
+    ]
+}
+
 /// Every backend with every distance kernel that exists for it, both steppers.
 fn distance_rows<const D: usize>(net: &Network<D>, dt: f64, steps: usize, size: f64) -> Vec<Row> {
     let mut rows = Vec::new();
     for stepper in STEPPERS {
-        rows.push(row::<f64, Exact, D>(net, dt, steps, size, stepper));
-        rows.push(row::<f32, Exact, D>(net, dt, steps, size, stepper));
-        rows.push(row::<I32F32, Exact, D>(net, dt, steps, size, stepper));
-        rows.push(row::<I16F16, Exact, D>(net, dt, steps, size, stepper));
+        rows.extend(exact_rows(net, dt, steps, size, stepper));
         rows.push(row::<f64, Linearised, D>(net, dt, steps, size, stepper));
         rows.push(row::<f32, Linearised, D>(net, dt, steps, size, stepper));
         rows.push(row::<I32F32, Linearised, D>(net, dt, steps, size, stepper));
@@ -284,17 +297,38 @@ fn check(title: &str, rows: &[Row], bounds: &[(&str, &str, f64)]) {
 // Distance networks
 // ---------------------------------------------------------------------------
 
+/// One scene of the comparison: the network, its rate and run, the bounds its rows are
+/// asserted with `(backend, kernel, bound)`, and its names (the printed table's title,
+/// the docs' row).
+struct Case {
+    title: &'static str,
+    label: &'static str,
+    net: Network<2>,
+    dt: f64,
+    steps: usize,
+    size: f64,
+    bounds: [(&'static str, &'static str, f64); 10],
+}
+
+/// Runs every kernel on `case` and asserts its bounds.
+fn check_case(case: &Case) {
+    let rows = distance_rows(&case.net, case.dt, case.steps, case.size);
+    check(case.title, &rows, &case.bounds);
+}
+
 /// A 2D rope of 10 particles (segment 0.1), pinned at its first particle, released
 /// horizontally under gravity: it swings down. 2 s at 120 Hz.
-#[test]
-fn rope_under_gravity_matches_the_reference() {
+fn rope_case() -> Case {
     let mut net = rope_2d(10, 0.1, true, 0.3, 0.2);
     net.gravity = [0.0, -9.81];
-    let rows = distance_rows(&net, 1.0 / 120.0, 240, 0.9);
-    check(
-        "2D rope, pinned end, gravity (10 particles, C_k 0.3, C_d 0.2, 240 steps)",
-        &rows,
-        &[
+    Case {
+        title: "2D rope, pinned end, gravity (10 particles, C_k 0.3, C_d 0.2, 240 steps)",
+        label: "rope of 10, pinned end, gravity, 120 Hz",
+        net,
+        dt: 1.0 / 120.0,
+        steps: 240,
+        size: 0.9,
+        bounds: [
             ("f64", "exact", 1e-13),
             ("f32", "exact", 2e-5),
             ("I32F32", "exact", 5e-14),
@@ -306,22 +340,29 @@ fn rope_under_gravity_matches_the_reference() {
             ("f32", "micromath", 1.0),
             ("f32", "micromath+newton", 5e-1),
         ],
-    );
+    }
+}
+
+#[test]
+fn rope_under_gravity_matches_the_reference() {
+    check_case(&rope_case());
 }
 
 /// The same rope with a drag of 3 per second on every particle
 /// (`SceneConfig::linear_damping`; the reference's `drag`), for 4 s: it swings down and
 /// comes to rest.
-#[test]
-fn dragged_rope_matches_the_reference() {
+fn dragged_rope_case() -> Case {
     let mut net = rope_2d(10, 0.1, true, 0.3, 0.2);
     net.gravity = [0.0, -9.81];
     net.drag = 3.0;
-    let rows = distance_rows(&net, 1.0 / 120.0, 480, 0.9);
-    check(
-        "2D rope, pinned end, gravity, drag 3/s (10 particles, C_k 0.3, C_d 0.2, 480 steps)",
-        &rows,
-        &[
+    Case {
+        title: "2D rope, pinned end, gravity, drag 3/s (10 particles, C_k 0.3, C_d 0.2, 480 steps)",
+        label: "the same rope with a drag of 3 per second, 4 s",
+        net,
+        dt: 1.0 / 120.0,
+        steps: 480,
+        size: 0.9,
+        bounds: [
             ("f64", "exact", 5e-15),
             ("f32", "exact", 1e-6),
             ("I32F32", "exact", 5e-15),
@@ -333,7 +374,12 @@ fn dragged_rope_matches_the_reference() {
             ("f32", "micromath", 1.0),
             ("f32", "micromath+newton", 5e-1),
         ],
-    );
+    }
+}
+
+#[test]
+fn dragged_rope_matches_the_reference() {
+    check_case(&dragged_rope_case());
 }
 
 /// A square 4×4 jelly mesh with diagonals (spacing 0.25, 8 springs on an inner
@@ -352,13 +398,15 @@ fn free_jelly() -> Network<2> {
     net
 }
 
-#[test]
-fn free_jelly_mesh_matches_the_reference() {
-    let rows = distance_rows(&free_jelly(), 1.0 / 120.0, 360, 0.75);
-    check(
-        "2D jelly mesh 4×4 with diagonals, free, squashed and spinning (C_k = C_d = 0.1, 360 steps)",
-        &rows,
-        &[
+fn free_jelly_case() -> Case {
+    Case {
+        title: "2D jelly mesh 4×4 with diagonals, free, squashed and spinning (C_k = C_d = 0.1, 360 steps)",
+        label: "jelly 4×4 with diagonals, free, spinning, masses 0.5–2",
+        net: free_jelly(),
+        dt: 1.0 / 120.0,
+        steps: 360,
+        size: 0.75,
+        bounds: [
             ("f64", "exact", 2e-14),
             ("f32", "exact", 5e-6),
             ("I32F32", "exact", 1e-14),
@@ -370,7 +418,12 @@ fn free_jelly_mesh_matches_the_reference() {
             ("f32", "micromath", 2e-1),
             ("f32", "micromath+newton", 5e-2),
         ],
-    );
+    }
+}
+
+#[test]
+fn free_jelly_mesh_matches_the_reference() {
+    check_case(&free_jelly_case());
 }
 
 /// The same mesh hanging from its pinned top row under gravity, bottom row pushed
@@ -390,18 +443,15 @@ fn hanging_jelly() -> Network<2> {
     net
 }
 
-#[test]
-fn hanging_jelly_mesh_matches_the_reference_in_library_order() {
-    let net = hanging_jelly();
-    // The insertion order really differs from the library's here.
-    let mut reordered = net.clone();
-    library_order(&mut reordered);
-    assert_ne!(reordered.springs, net.springs);
-    let rows = distance_rows(&net, 1.0 / 120.0, 360, 0.75);
-    check(
-        "2D jelly mesh 4×4 with diagonals, top row pinned, gravity (C_k = C_d = 0.1, 360 steps)",
-        &rows,
-        &[
+fn hanging_jelly_case() -> Case {
+    Case {
+        title: "2D jelly mesh 4×4 with diagonals, top row pinned, gravity (C_k = C_d = 0.1, 360 steps)",
+        label: "the same jelly hanging from its top row",
+        net: hanging_jelly(),
+        dt: 1.0 / 120.0,
+        steps: 360,
+        size: 0.75,
+        bounds: [
             ("f64", "exact", 2e-15),
             ("f32", "exact", 2e-7),
             ("I32F32", "exact", 2e-15),
@@ -413,21 +463,33 @@ fn hanging_jelly_mesh_matches_the_reference_in_library_order() {
             ("f32", "micromath", 2e-1),
             ("f32", "micromath+newton", 5e-3),
         ],
-    );
+    }
+}
+
+#[test]
+fn hanging_jelly_mesh_matches_the_reference_in_library_order() {
+    let case = hanging_jelly_case();
+    // The insertion order really differs from the library's here.
+    let mut reordered = case.net.clone();
+    library_order(&mut reordered);
+    assert_ne!(reordered.springs, case.net.springs);
+    check_case(&case);
 }
 
 /// Two free particles of masses 1 and 7, one spring (C_k 0.6, C_d 0.2), stretched and
 /// moving. 10 s at 60 Hz.
-#[test]
-fn free_pair_of_unequal_masses_matches_the_reference() {
+fn free_pair_case() -> Case {
     let mut net = pair_2d(1.0, 7.0, [1.3, 0.4], 1.0, 0.6, 0.2);
     net.particles[0].vel = [0.8, -0.5];
     net.particles[1].vel = [-0.1, 0.3];
-    let rows = distance_rows(&net, 1.0 / 60.0, 600, 1.5);
-    check(
-        "two free particles, masses 1 and 7 (C_k 0.6, C_d 0.2, 600 steps)",
-        &rows,
-        &[
+    Case {
+        title: "two free particles, masses 1 and 7 (C_k 0.6, C_d 0.2, 600 steps)",
+        label: "two free particles, masses 1 and 7",
+        net,
+        dt: 1.0 / 60.0,
+        steps: 600,
+        size: 1.5,
+        bounds: [
             ("f64", "exact", 5e-14),
             ("f32", "exact", 5e-5),
             ("I32F32", "exact", 2e-14),
@@ -442,19 +504,25 @@ fn free_pair_of_unequal_masses_matches_the_reference() {
             ("f32", "micromath", 2.0),
             ("f32", "micromath+newton", 1e-1),
         ],
-    );
+    }
+}
+
+#[test]
+fn free_pair_of_unequal_masses_matches_the_reference() {
+    check_case(&free_pair_case());
 }
 
 /// Two equal particles revolving about their centre of mass on a rigid spring
 /// (C_k = C_d = 1), started stretched (d0 = 1.5, rest 1) at ω = 10 rad/s. 20 s at 100 Hz.
-#[test]
-fn spinning_pair_matches_the_reference() {
-    let net = spinning_pair_2d(1.0, 1.5, 1.0, 10.0, 1.0, 1.0);
-    let rows = distance_rows(&net, 0.01, 2000, 1.5);
-    check(
-        "spinning pair, ω = 10 rad/s, d0 = 1.5, rest 1 (C_k = C_d = 1, 2000 steps)",
-        &rows,
-        &[
+fn spinning_pair_case() -> Case {
+    Case {
+        title: "spinning pair, ω = 10 rad/s, d0 = 1.5, rest 1 (C_k = C_d = 1, 2000 steps)",
+        label: "a pair spinning at 10 rad/s on a rigid spring",
+        net: spinning_pair_2d(1.0, 1.5, 1.0, 10.0, 1.0, 1.0),
+        dt: 0.01,
+        steps: 2000,
+        size: 1.5,
+        bounds: [
             ("f64", "exact", 5e-13),
             ("f32", "exact", 5e-4),
             ("I32F32", "exact", 1e-12),
@@ -467,7 +535,12 @@ fn spinning_pair_matches_the_reference() {
             ("f32", "micromath", 5.0),
             ("f32", "micromath+newton", 1.0),
         ],
-    );
+    }
+}
+
+#[test]
+fn spinning_pair_matches_the_reference() {
+    check_case(&spinning_pair_case());
 }
 
 // ---------------------------------------------------------------------------
@@ -487,23 +560,23 @@ fn far_jelly<S: Scalar>(offset: f64, stepper: Stepper) -> Errors {
     run(&mut pair, dt, 360, 0.75, stepper)
 }
 
-/// `f32` positions carry their rounding remainder: a jelly 10⁴ units from the origin
-/// (where an `f32` position has a last bit of 9.8e−4, 1.3e−3 of the jelly's size)
-/// follows the reference about as closely as at the origin. The fixed-point states are
-/// exact wherever they are (the far rows measure the reference's own `f64` rounding at
-/// 10⁴, a last bit of 1.8e−12).
-#[test]
-fn a_jelly_far_from_the_origin_matches_the_reference_as_well_as_near_it() {
+/// The far jelly's bounds: (backend, bound at the origin, bound 10⁴ away), about 3× the
+/// measured worst.
+const FAR_BOUNDS: [(&str, f64, f64); 3] = [
+    ("f32", 1e-5, 2e-5),
+    ("I32F32", 5e-14, 2e-10),
+    ("I16F16", 2e-8, 2e-8),
+];
+
+/// Runs the free jelly at the origin and 10⁴ away in the backends whose positions could
+/// lose bits there, prints the table, asserts [`FAR_BOUNDS`] and returns the rows
+/// `(stepper, backend, at the origin, 10⁴ away)`.
+fn check_far() -> Vec<(Stepper, &'static str, Errors, Errors)> {
     let mut out = String::from(
         "\nFree jelly drifting at (3, −2) units/s, 360 steps, exact kernel: max |Δx|/size at the origin and 10⁴ away\n\
          | stepper | backend | at 0 | at 10⁴ |\n|---|---|---|---|\n",
     );
-    // (backend, bound at the origin, bound 10⁴ away), about 3× the measured worst.
-    let bounds = [
-        ("f32", 1e-5, 2e-5),
-        ("I32F32", 5e-14, 2e-10),
-        ("I16F16", 2e-8, 2e-8),
-    ];
+    let mut rows = Vec::new();
     let mut failures = Vec::new();
     for stepper in STEPPERS {
         for (name, near, far) in [
@@ -530,14 +603,111 @@ fn a_jelly_far_from_the_origin_matches_the_reference_as_well_as_near_it() {
                 near.position,
                 far.position
             );
-            let (_, near_bound, far_bound) = bounds.iter().find(|b| b.0 == name).unwrap();
+            let (_, near_bound, far_bound) = FAR_BOUNDS.iter().find(|b| b.0 == name).unwrap();
             if !(near.position <= *near_bound && far.position <= *far_bound) {
                 failures.push(format!("{name} {stepper:?}: {near:?} {far:?}"));
             }
+            rows.push((stepper, name, near, far));
         }
     }
     println!("{out}");
     assert!(failures.is_empty(), "{failures:#?}");
+    rows
+}
+
+/// `f32` positions carry their rounding remainder: a jelly 10⁴ units from the origin
+/// (where an `f32` position has a last bit of 9.8e−4, 1.3e−3 of the jelly's size)
+/// follows the reference about as closely as at the origin. The fixed-point states are
+/// exact wherever they are (the far rows measure the reference's own `f64` rounding at
+/// 10⁴, a last bit of 1.8e−12).
+#[test]
+fn a_jelly_far_from_the_origin_matches_the_reference_as_well_as_near_it() {
+    let _ = check_far();
+}
+
+// ---------------------------------------------------------------------------
+// The docs' tables
+// ---------------------------------------------------------------------------
+
+const BACKENDS: [&str; 4] = ["f64", "f32", "I32F32", "I16F16"];
+
+/// docs/networks.md's table (`target/figures/networks/scene-vs-reference.md`: per scene
+/// its steps and the largest position error of the exact kernel in each backend, worst
+/// of both steppers) and docs/accuracy.md's (`target/figures/accuracy/scene-vs-reference.md`:
+/// the same with the bounds asserted, and the far jelly's row). Asserts the bounds of
+/// every row it measures.
+#[test]
+fn reference_tables() {
+    let (mut networks, mut accuracy) = (Vec::new(), Vec::new());
+    for case in [
+        rope_case(),
+        dragged_rope_case(),
+        free_jelly_case(),
+        hanging_jelly_case(),
+        free_pair_case(),
+        spinning_pair_case(),
+    ] {
+        let rows: Vec<Row> = STEPPERS
+            .into_iter()
+            .flat_map(|s| exact_rows(&case.net, case.dt, case.steps, case.size, s))
+            .collect();
+        check(case.title, &rows, &case.bounds);
+        let worst = BACKENDS.map(|b| {
+            rows.iter()
+                .filter(|r| r.backend == b)
+                .map(|r| {
+                    r.errors
+                        .expect("the exact kernel is never refused")
+                        .position
+                })
+                .fold(0.0, f64::max)
+        });
+        let bounds = BACKENDS.map(|b| {
+            let (_, _, bound) = case
+                .bounds
+                .iter()
+                .find(|(backend, kernel, _)| *backend == b && *kernel == "exact")
+                .expect("a bound for every backend");
+            format!("{bound:.0e}")
+        });
+        let steps = lab::table::grouped(case.steps);
+        let mut row = vec![case.label.to_string(), steps.clone()];
+        row.extend(worst.map(lab::table::sci));
+        networks.push(row);
+        let mut row = vec![format!("{}, {steps} steps", case.label)];
+        row.extend(worst.map(lab::table::sci));
+        row.push(bounds.join(", "));
+        accuracy.push(row);
+    }
+    let far = check_far();
+    let mut row = vec![
+        "the free jelly 10⁴ units from the origin, drifting".to_string(),
+        "—".to_string(),
+    ];
+    let mut bounds = vec!["—".to_string()];
+    for (name, _, far_bound) in FAR_BOUNDS {
+        let worst = far
+            .iter()
+            .filter(|r| r.1 == name)
+            .map(|r| r.3.position)
+            .fold(0.0, f64::max);
+        row.push(lab::table::sci(worst));
+        bounds.push(format!("{far_bound:.0e}"));
+    }
+    row.push(bounds.join(", "));
+    accuracy.push(row);
+    let header = ["scene", "steps", "f64", "f32", "I32F32", "I16F16"];
+    let path = lab::table::write_figures(
+        "networks/scene-vs-reference.md",
+        &lab::table::markdown(&header, &networks),
+    );
+    println!("wrote {}", path.display());
+    let header = ["scene", "f64", "f32", "I32F32", "I16F16", "bounds asserted"];
+    let path = lab::table::write_figures(
+        "accuracy/scene-vs-reference.md",
+        &lab::table::markdown(&header, &accuracy),
+    );
+    println!("wrote {}", path.display());
 }
 
 /// What the comparisons read: [`Scene::precise_position`] is the state the scene holds.

@@ -293,17 +293,22 @@ pub struct Totals {
     pub worst: (i64, String),
     /// The largest peak to peak of a run that did not oscillate.
     pub worst_quiet_pp: i64,
-    /// The most endstop hits of a run.
+    /// The most endstop hits of a run, and its description.
     pub most_hits: usize,
+    pub most_hits_run: String,
     /// The largest |torque| fraction of any run.
     pub max_fraction: f64,
 }
 
 impl Totals {
-    /// Adds one run, described by `what` (kept when it is the worst oscillating run).
-    pub fn record(&mut self, r: &Run, what: impl FnOnce() -> String) {
+    /// Adds one run, described by `what` (kept when it is the worst oscillating run, or
+    /// the one with the most endstop hits).
+    pub fn record(&mut self, r: &Run, what: impl Fn() -> String) {
         self.runs += 1;
-        self.most_hits = self.most_hits.max(r.hits);
+        if r.hits > self.most_hits {
+            self.most_hits = r.hits;
+            self.most_hits_run = what();
+        }
         self.max_fraction = self.max_fraction.max(r.max_fraction);
         if r.oscillating() {
             self.oscillating += 1;
