@@ -181,9 +181,18 @@ fn full_rest_sweep() {
         ("f32", sweep::<f32>("f32", &cases)),
         ("I16F16", sweep::<I16F16>("I16F16", &cases)),
     ];
+    let mut rows = Vec::new();
     for (name, s) in &sweeps {
         print(name, s);
+        rows.extend(s.rows(name));
     }
+    // docs/knob.md's table of the full grid, checked by `scripts/check-figures --long`;
+    // written before the assertions, which the knob does not meet yet.
+    let path = lab::table::write_figures(
+        "knob/rest-full.md",
+        &lab::table::markdown(&Sweep::ROW_HEADER, &rows),
+    );
+    println!("wrote {}", path.display());
     for (name, s) in &sweeps {
         assert_within_limit(name, s);
         assert_no_oscillation(name, s);
