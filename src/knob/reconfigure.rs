@@ -26,7 +26,8 @@ pub enum Anchor {
 impl<S: Scalar> Knob<S> {
     /// Takes a new layout (detents, strengths, endstops, magnets, damping) in place. The
     /// angle, the velocity filter's state and the sensor screen carry over; with
-    /// [`Anchor::CurrentDetent`] the detent index does too. The torque moves from the old
+    /// [`Anchor::CurrentDetent`] the detent index does too (the new layout's last, where it
+    /// has fewer detents). The torque moves from the old
     /// layout's to the new one's by at most one count's torque (of the new detents; at
     /// least 1/256 of the limit) per period, so the change is not felt as a kick.
     ///
@@ -61,6 +62,10 @@ impl<S: Scalar> Knob<S> {
                 let shifted = config.shifted_to(self.detent(), self.detent_centre().to_f64());
                 let mut k = Knob::new(&shifted, angle)?;
                 k.ladder.set_index(self.detent());
+                // The window `Knob::new` set is the detent it settled on, which need not
+                // be this one: set it again, or the probe below takes the short path
+                // about this detent's centre and skips the switch the long path makes.
+                k.refresh_quiet();
                 k
             }
         };
