@@ -76,10 +76,9 @@
 //! "Oscillating" is more than 8 counts peak to peak over the last 10 % with at least 4
 //! reversals.
 //!
-//! | sweep | configurations | runs | oscillating | command |
-//! |---|---|---|---|---|
-//! | full | 12,960 | 204,120 | **0** | `cargo test --release --test knob_sweep -- --ignored --nocapture` (minutes; ignored in a plain `cargo test`) |
-//! | short, `f64`, `f32`, `I16F16` | 256 | 2,688 each | **0** | `cargo test --release --test knob_sweep -- --nocapture` |
+//! docs/knob.md has the tables of both sweeps, written by their tests (`cargo test
+//! --release --test knob_sweep -- --nocapture` for the short one, `-- --ignored` for the
+//! full one, which takes minutes).
 //!
 //! **Against SmartKnob-style PD detents** (`τ = −k_p·e − k_d·ω`), with the same rotor,
 //! detents, torque limit, small-signal stiffness `k_p`, delay and encoder, flicked at
@@ -580,7 +579,9 @@ impl<S: Scalar> Knob<S> {
         let common =
             matches!(self.mode, Mode::Tracking) && self.beyond.is_none() && !self.magnets.any();
         (self.quiet_lo, self.quiet_hi) = if common {
-            let (down, up) = self.ladder.switching_points(self.reach);
+            // No switching point that way: the largest angle the knob takes.
+            let (down, up) = self.ladder.switching_points();
+            let (down, up) = (down.unwrap_or(self.reach.neg()), up.unwrap_or(self.reach));
             if self.bounded {
                 (
                     if down > self.lo { down } else { self.lo },
@@ -947,16 +948,8 @@ impl<S: Scalar> Knob<S> {
             self.beta,
         );
         if angle >= self.quiet_lo && angle <= self.quiet_hi {
-            let shape = &self.zones[FREE].shape;
-            let stretch = angle
-                .sub(self.ladder.centre())
-                .mul(self.detent_gain)
-                .add(angle.sub(self.return_centre).mul(self.return_gain));
-            let torque = law::torque(
-                law::spring(stretch, shape),
-                law::damping_torque(self.damping_state, self.unscale),
-                self.floor,
-            );
+            let (detent, ret) = self.layer_terms(angle);
+            let torque = self.zone_torque(detent.add(ret), FREE);
             self.last_torque = torque;
             KnobOutput {
                 torque,
@@ -966,6 +959,27 @@ impl<S: Scalar> Knob<S> {
         } else {
             self.period_zones(angle)
         }
+    }
+
+    /// The detent's and the return spring's terms of the spring sum at `angle`: each
+    /// layer's extension times its gain (torque, a fraction of the limit).
+    #[inline(always)]
+    fn layer_terms(&self, angle: S) -> (S, S) {
+        (
+            angle.sub(self.ladder.centre()).mul(self.detent_gain),
+            angle.sub(self.return_centre).mul(self.return_gain),
+        )
+    }
+
+    /// The torque of the spring sum `stretch` through `zone`'s rest zone and knee, with
+    /// the damper's, clamped ([`law::torque`]).
+    #[inline(always)]
+    fn zone_torque(&self, stretch: S, zone: usize) -> S {
+        law::torque(
+            law::spring(stretch, &self.zones[zone].shape),
+            law::damping_torque(self.damping_state, self.unscale),
+            self.floor,
+        )
     }
 
     /// [`Self::period`] off the quiet window: the detent's switch, the magnets, the
@@ -1000,19 +1014,10 @@ impl<S: Scalar> Knob<S> {
             self.track_endstops(angle, &mut events);
         }
 
-        let z = &self.zones[zone];
-        // The same sum as the short path's, with the zone's own term between.
-        let stretch = angle
-            .sub(self.ladder.centre())
-            .mul(self.detent_gain)
-            .add(other.mul(z.other))
-            .add(angle.sub(self.return_centre).mul(self.return_gain));
+        // The short path's sum with the zone's own term between.
+        let (detent, ret) = self.layer_terms(angle);
         let out = KnobOutput {
-            torque: law::torque(
-                law::spring(stretch, &z.shape),
-                law::damping_torque(self.damping_state, self.unscale),
-                self.floor,
-            ),
+            torque: self.zone_torque(detent.add(other.mul(self.zones[zone].other)).add(ret), zone),
             detent: self.ladder.index(),
             events,
         };
