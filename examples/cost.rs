@@ -106,7 +106,8 @@ fn moving_value<S: Scalar>() -> Option<SpringValue<S, 1>> {
 }
 
 /// A UI value at 60 Hz, moving: `C_k = 0.05` and `C_d = 0.3` (a moderately damped
-/// spring of about 2 Hz), whose damping is above the fixed-point fast path's `2⁻³`.
+/// spring of about 2 Hz), whose damping is above the fixed-point fast path's `2⁻³`:
+/// `I16F16` takes its out-of-line lifted step.
 fn moving_ui_value<S: Scalar>() -> Option<SpringValue<S, 1>> {
     let tuning = Tuning::from_coefficients(0.05, 0.3, 1.0 / 60.0).ok()?;
     let mut v = SpringValue::new([S::ZERO], &tuning)

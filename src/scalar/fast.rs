@@ -1,7 +1,12 @@
 //! The fixed-point step's fast path: gains prepared at set-up so that a step in the
 //! common case (kHz-rate and UI springs, states well inside their range) is two long
 //! multiplies per product and no saturation test. Bit for bit the same results as the
-//! general path in the `wide` module, which the cases outside it take.
+//! general path in the `wide` module, which the cases outside it take in `I32F32`. In
+//! `I16F16` they take the lifted step, which scales the state up by a power of two so
+//! that a gain of up to 4 has the fast form, and scales a state beyond `2^16` units
+//! down into that range: `I16F16` links no general product.
+
+use super::raw_state::{NARROW_LEAST_DAMPING_K, NARROW_LEAST_STIFFNESS_K};
 
 /// A gain prepared at set-up for the fast path of the step, [`narrow_step::product`].
 ///
@@ -56,8 +61,9 @@ impl Shift {
 }
 
 /// Both gains of a spring prepared for the fast path, and the bound on the state under
-/// which that path cannot overflow: `headroom` is `2³⁰` when both gains have a fast
-/// form and 0 (no state passes) otherwise.
+/// which that path cannot overflow: in `I16F16` it is `2²⁵` (states of `−2^56 ≤ s <
+/// 2^56`, as the lifted step's) when both gains have the fast form without a lift, and 0
+/// (no state passes) otherwise; in `I32F32`, `2⁶²` or 0.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub(crate) struct FastGains<M> {
@@ -120,28 +126,46 @@ no_fast_path!(i64);
 
 impl FastGains<i32> {
     /// The fast form of the narrow gains `(mantissa, shift)`, or none (headroom 0).
+    ///
+    /// A gain `C = m/2^(32 + k)` of `k ≥ 2` is in the form of the fast step, which
+    /// then runs wherever the state is within its headroom. A gain of `k < 2`
+    /// (`C ≥ 2⁻³`: the damping of a UI spring at 60 Hz) is stored in the form of `k = 2`
+    /// and the gains' headroom is 0: the lifted step ([`narrow_step::advance_lifted`]),
+    /// which multiplies the state by `2^(2 − k)` first ([`narrow_step::lift`]), takes it. The lifted step takes any stiffness `C_k < 4` (`k ≥ −3`) and damping
+    /// `C_d < 2` (`k ≥ −2`), the exact single-spring region's bounds; a gain outside
+    /// them, negative, or below `2⁻³³` (`k > 31`) has no form, and
+    /// [`narrow_takes`](super::raw_state::narrow_takes) refuses it at set-up.
     pub(crate) fn narrow(stiffness: (i32, i32), damping: (i32, i32)) -> Self {
-        let factor = |(m, shift): (i32, i32)| -> Option<FastFactor<i32>> {
+        // The factor and whether it is lifted.
+        let factor = |(m, shift): (i32, i32), least_k: i32| -> Option<(FastFactor<i32>, bool)> {
             // C = 0: any form gives 0; take k = 2.
             let (m, k) = if m == 0 { (0, 2) } else { (m, shift - 32) };
-            if m < 0 || !(2..=31).contains(&k) {
+            if m < 0 || !(least_k..=31).contains(&k) {
                 return None;
             }
-            let k = k as u32;
-            Some(FastFactor {
-                mantissa: m,
-                bias: ((1u32 << k) - 1) as i32,
-                scale: 1i32 << (32 - k),
-                k: Shift::new(k),
-                complement: Shift::new(32 - k),
-                halves: [m as u16, (m >> 16) as u16],
-            })
+            // The lifted step multiplies the state by 2^(2 − k) first (`narrow_step::lift`).
+            let k = k.max(2) as u32;
+            let lifted = m != 0 && shift - 32 < 2;
+            Some((
+                FastFactor {
+                    mantissa: m,
+                    bias: ((1u32 << k) - 1) as i32,
+                    scale: 1i32 << (32 - k),
+                    k: Shift::new(k),
+                    complement: Shift::new(32 - k),
+                    halves: [m as u16, (m >> 16) as u16],
+                },
+                lifted,
+            ))
         };
-        match (factor(stiffness), factor(damping)) {
-            (Some(stiffness), Some(damping)) => FastGains {
+        match (
+            factor(stiffness, NARROW_LEAST_STIFFNESS_K),
+            factor(damping, NARROW_LEAST_DAMPING_K),
+        ) {
+            (Some((stiffness, lifted_k)), Some((damping, lifted_d))) => FastGains {
                 stiffness,
                 damping,
-                headroom: 1 << 30,
+                headroom: if lifted_k || lifted_d { 0 } else { 1 << 25 },
             },
             _ => Self::NONE,
         }
@@ -292,20 +316,113 @@ pub(crate) mod narrow_step {
         }
     }
 
+    /// The lift `j` of a gain of shift `shift` (`C = m/2^shift`): the power of two the
+    /// lifted step multiplies the state by, so that `shift + j ≥ 34` (the fast form's
+    /// `k ≥ 2`). At most 5, for a stiffness just below 4 (`shift = 29`); 0 from `k = 2`
+    /// up. A zero gain (shift 0) gets 5, harmlessly: its product is 0 whatever the
+    /// state, wrapped or not.
+    #[inline(always)]
+    pub(crate) fn lift(shift: i32) -> u32 {
+        (34 - shift).clamp(0, 5) as u32
+    }
+
+    /// `x·2^j` (`j ≤ 5`; wrapping), computed the way `MODE` says.
+    #[inline(always)]
+    pub(crate) fn lift_in<const MODE: u8>(x: i64, j: u32) -> i64 {
+        if MODE == mode::NATIVE {
+            x.wrapping_shl(j)
+        } else {
+            // Two 32-bit shifts per word, `(l >> 1) >> (31 − j)` being `l >> (32 − j)`
+            // with both amounts below 32, also for `j = 0`: six instructions on a
+            // Cortex-M4, where LLVM's 64-bit shift by a register takes nine (it also
+            // covers `j ≥ 32`), and turns a multiply by `2^j` back into that shift.
+            let (h, l) = ((x >> 32) as u32, x as u32);
+            let high = (h << j) | ((l >> 1) >> (31 - j));
+            ((high as i64) << 32) | (l << j) as i64
+        }
+    }
+
+    /// [`product`] of a gain of lift `j`, for `|x| < 2^58`: `x·C = (x·2^j)·m/2^(shift + j)`
+    /// rounded the same way, since both quotients are the same rational number.
+    #[inline(always)]
+    pub(crate) fn lifted_product_in<const AWAY: bool, const MODE: u8>(
+        x: i64,
+        j: u32,
+        f: &FastFactor<i32>,
+    ) -> i64 {
+        product_in::<AWAY, MODE>(lift_in::<MODE>(x, j), f)
+    }
+
+    /// Whether `x` and `ũ` are both 57-bit integers, `−2^56 ≤ s < 2^56` (`2^16` units of
+    /// an `I16F16` position, which the offset between two positions stays within): the
+    /// states the lifted step takes. `sₕ + 2^24 < 2^25` (unsigned) for both at once, as
+    /// in [`advance`].
+    #[inline(always)]
+    pub(crate) fn liftable(x: i64, v: i64) -> bool {
+        (((x >> 32) as u32).wrapping_add(1 << 24) | ((v >> 32) as u32).wrapping_add(1 << 24))
+            < 1 << 25
+    }
+
+    /// `(x, ũ)` halved together (rounded toward −∞) until [`liftable`]: the same
+    /// spring's motion from a smaller start, in the same direction. A stable spring's
+    /// orbit decays, and each halving halves the largest state that orbit reaches after
+    /// it, so a spring that grows past `2^16` units (a tuning beyond the article's square
+    /// started near an end of the range) still comes to rest; clipping each component
+    /// on its own turned such a spring into a limit cycle (`C_k = 3.45`, `C_d = 0.23`,
+    /// `tests/single_spring_stability.rs`).
+    #[inline(always)]
+    pub(crate) fn scale_into_range(mut x: i64, mut v: i64) -> (i64, i64) {
+        while !liftable(x, v) {
+            (x, v) = (x >> 1, v >> 1);
+        }
+        (x, v)
+    }
+
+    /// One step of any gains [`narrow_takes`](super::super::raw_state::narrow_takes)
+    /// takes, of shifts `shifts` (stiffness, damping), from any state: a state outside
+    /// `[−2^56, 2^56)` is first scaled into it ([`scale_into_range`]), which is how the
+    /// `I16F16` step saturates.
+    ///
+    /// With `|x|, |ũ| ≤ 2^56`, `C_k < 4` and `C_d < 2`: `|x·2^j| < 2^61` (`j ≤ 5`),
+    /// `|C_k·x| < 2^58`, `|u| < 2^59`, `|x + u| < 2^60`, `|u·2^j| < 2^63` (`j ≤ 4` for a
+    /// damping below 2), and `C_d·u` rounded away from zero is at most `2|u| + 1`, so
+    /// that `|u − C_d·u| ≤ |u| + 1`: nothing overflows.
+    #[inline(always)]
+    pub(crate) fn advance_lifted(g: &FastGains<i32>, shifts: (i32, i32), x: &mut i64, v: &mut i64) {
+        advance_lifted_in::<{ mode::TARGET }>(g, shifts, x, v)
+    }
+
+    /// [`advance_lifted`] computed the way `MODE` says.
+    #[inline(always)]
+    pub(crate) fn advance_lifted_in<const MODE: u8>(
+        g: &FastGains<i32>,
+        (stiffness_shift, damping_shift): (i32, i32),
+        x: &mut i64,
+        v: &mut i64,
+    ) {
+        let (x0, v0) = scale_into_range(*x, *v);
+        let (jk, jd) = (lift(stiffness_shift), lift(damping_shift));
+        let u = v0.wrapping_sub(lifted_product_in::<false, MODE>(x0, jk, &g.stiffness));
+        *x = x0.wrapping_add(u);
+        *v = u.wrapping_sub(lifted_product_in::<true, MODE>(u, jd, &g.damping));
+    }
+
     /// One step `u = ũ − C_k·x; x += u; ũ = u − C_d·u` in the fast form, or `false`
     /// (nothing changed) when the gains have none or the state is outside the
     /// headroom.
     ///
-    /// With `|x|, |ũ| < 2^61` (a state of up to 2²¹ units) and both gains below 2⁻³:
-    /// `|C_k·x| < 2^58`, `|u| < 2^62`, `|x + u| < 2^63`, and `C_d·u` rounded away from
-    /// zero lies between 0 and `u`: nothing can overflow, so plain adds give the
-    /// saturating ones' results without their tests.
+    /// The headroom is the lifted step's range, `−2^56 ≤ x, ũ < 2^56` (2¹⁶ units), so
+    /// that every `I16F16` step scales a state beyond it the same way, whatever its gains
+    /// ([`scale_into_range`]). There, with both gains below 2⁻³: `|C_k·x| < 2^53`,
+    /// `|u| < 2^57`, `|x + u| < 2^58`, and `C_d·u` rounded away from zero lies between 0
+    /// and `u`: nothing can overflow, so plain adds give the saturating ones' results
+    /// without their tests.
     #[inline(always)]
     pub(crate) fn advance(g: &FastGains<i32>, x: &mut i64, v: &mut i64) -> bool {
         let (x0, v0) = (*x, *v);
-        // |s| < 2^61 ⟺ sₕ + 2^29 < 2^30 (unsigned); both at once with an `or`.
+        // −2^56 ≤ s < 2^56 ⟺ sₕ + 2^24 < 2^25 (unsigned); both at once with an `or`.
         let probe =
-            ((x0 >> 32) as u32).wrapping_add(1 << 29) | ((v0 >> 32) as u32).wrapping_add(1 << 29);
+            ((x0 >> 32) as u32).wrapping_add(1 << 24) | ((v0 >> 32) as u32).wrapping_add(1 << 24);
         if probe >= g.headroom as u32 {
             return false;
         }

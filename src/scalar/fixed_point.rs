@@ -82,7 +82,7 @@ macro_rules! fixed_backend {
     (
         $S:ty, $Bits:ty, $State:ty, $StateU:ty, $Half:ty, $Coef:ty, $Wide:ty,
         $arith:ident, $narrow:ident, $narrow_self:ident, $guard:expr, $name:literal,
-        $fast:expr, $fast_step:expr, $mul:path
+        $fast:expr, $fast_step:expr, $off_fast_step:path, $mul:path
     ) => {
         impl Sealed for $S {}
 
@@ -168,22 +168,7 @@ macro_rules! fixed_backend {
             #[inline(always)]
             fn advance(gains: &Self::Gains, x: &mut $State, v: &mut $State) {
                 if !$fast_step(&gains.fast, x, v) {
-                    general_step(gains, x, v);
-                }
-                /// Any gains, any state: the wide products and saturating sums.
-                #[cold]
-                #[inline(never)]
-                fn general_step(gains: &FixedGains<$Half>, x: &mut $State, v: &mut $State) {
-                    let k = gains.stiffness;
-                    let d = gains.damping;
-                    let u = v.saturating_sub(product(*x, k.mantissa, k.shift, false));
-                    *x = x.saturating_add(u);
-                    *v = u.saturating_sub(product(u, d.mantissa, d.shift, true));
-                }
-                /// One copy of the saturating product for both of the step's roundings.
-                #[inline(never)]
-                fn product(x: $State, m: $Half, shift: i32, away: bool) -> $State {
-                    $arith::mul_shift_rounding(x, m, shift, away)
+                    $off_fast_step(gains, x, v);
                 }
             }
             #[inline(always)]
@@ -474,6 +459,33 @@ impl WideGeometry for i128 {
     }
 }
 
+/// The `I16F16` step off its fast path: gains of `C ≥ 2⁻³` (the damping of a UI spring
+/// at 60 Hz), and states beyond the fast path's headroom of `2^16` units, which it
+/// scales into it. It takes every gain `I16F16` accepts, so the step links no general
+/// product. Cold, so that the fast path around its call stays as short as without it.
+#[cold]
+#[inline(never)]
+fn narrow_lifted_step(gains: &FixedGains<i32>, x: &mut i64, v: &mut i64) {
+    let shifts = (gains.stiffness.shift, gains.damping.shift);
+    narrow_step::advance_lifted(&gains.fast, shifts, x, v);
+}
+
+/// The `I32F32` step off its fast path: any gains, any state, with the wide products
+/// and saturating sums.
+#[cold]
+#[inline(never)]
+fn broad_general_step(gains: &FixedGains<i64>, x: &mut i128, v: &mut i128) {
+    /// One copy of the saturating product for both of the step's roundings.
+    #[inline(never)]
+    fn product(x: i128, m: i64, shift: i32, away: bool) -> i128 {
+        broad::mul_shift_rounding(x, m, shift, away)
+    }
+    let (k, d) = (gains.stiffness, gains.damping);
+    let u = v.saturating_sub(product(*x, k.mantissa, k.shift, false));
+    *x = x.saturating_add(u);
+    *v = u.saturating_sub(product(u, d.mantissa, d.shift, true));
+}
+
 fixed_backend!(
     I16F16,
     i32,
@@ -491,6 +503,7 @@ fixed_backend!(
         FastGains::narrow((k.mantissa, k.shift), (d.mantissa, d.shift))
     },
     narrow_step::advance,
+    narrow_lifted_step,
     super::widening::mul_i32
 );
 fixed_backend!(
@@ -510,6 +523,7 @@ fixed_backend!(
         FastGains::broad((k.mantissa, k.shift), (d.mantissa, d.shift))
     },
     broad_step::advance,
+    broad_general_step,
     super::widening::mul_i64
 );
 
@@ -559,6 +573,45 @@ mod tests {
         assert!(I32F32::gains(1e-10, 0.1).is_none()); // C_k < 2^−32
         assert!(I32F32::gains(1e-9, 0.1).is_some());
         assert!(I16F16::gains(0.0, 0.0).is_some());
+    }
+
+    #[test]
+    fn i16f16_takes_the_single_spring_region_and_no_more() {
+        // The lifted step takes C_k < 4 and C_d < 2 (the exact region's bounds,
+        // `Tuning::from_coefficients_extended`), each zero or at least 2^−33.
+        for (k, d, taken) in [
+            (3.999, 0.0, true),
+            (4.0, 0.0, false),
+            (0.5, 1.999, true),
+            (0.5, 2.0, false),
+            (0.05, 0.3, true),
+            (0.01, 2e-10, true),
+            (0.01, 1e-10, false), // C_d < 2^−33
+            (-0.1, 0.3, false),
+        ] {
+            assert_eq!(I16F16::gains(k, d).is_some(), taken, "{k} {d}");
+        }
+        // I32F32 keeps its general step: any magnitude.
+        assert!(I32F32::gains(4.0, 2.0).is_some());
+    }
+
+    #[test]
+    fn a_ui_spring_steps_as_the_saturating_arithmetic_does() {
+        // C_k = 0.05, C_d = 0.3 (a UI spring at 60 Hz) takes the lifted step; it agrees
+        // with the saturating products of `spring_term` and `damping_term`.
+        let g = I16F16::gains(0.05, 0.3).unwrap();
+        assert_eq!(g.fast.headroom, 0);
+        let (mut x, mut v) = (-(37i64 << 40) + 12_345, 5i64 << 38);
+        for _ in 0..500 {
+            let u = I16F16::state_sub(v, I16F16::spring_term(&g, x));
+            let (ex, ev) = (
+                I16F16::state_add(x, u),
+                I16F16::state_sub(u, I16F16::damping_term(&g, u)),
+            );
+            I16F16::advance(&g, &mut x, &mut v);
+            assert_eq!((x, v), (ex, ev));
+        }
+        assert!(x.abs() < 1 << 24, "{x}"); // at rest within one position bit
     }
 
     #[test]

@@ -98,7 +98,14 @@ pub(crate) use maybe_format::MaybeFormat;
 /// relative error `ε`); a fixed `Q3.29` fraction holds it to 210 last bits. Both gains
 /// share the exponent of the larger, so one shift finishes the sum of the two products.
 ///
-/// Every fixed-point operation saturates; none wraps. Float ↔ fixed conversion happens
+/// Every fixed-point operation saturates; none wraps. The `I16F16` step of a value, a
+/// batch or a decay ([`Scalar::advance`]) keeps its state within `[−2¹⁶, 2¹⁶)` units,
+/// twice the positions' range, so that it multiplies by every gain `I16F16` accepts
+/// (`C_k < 4`, `C_d < 2`, each zero or at least `2⁻³³`) with two long multiplies and no
+/// saturation test: a state beyond it (an offset between positions never is; a spring
+/// tuned beyond the article's square, started near an end of the range, can grow past
+/// it) is halved, offset and step velocity together, until it is inside. That is the
+/// same spring from a smaller start, in the same direction, so it still comes to rest. Float ↔ fixed conversion happens
 /// at set-up only; the stepping code never touches a float when the backend is fixed
 /// point.
 ///
@@ -166,7 +173,16 @@ pub trait Scalar:
     /// Converts to `f64` (rounded to nearest for `I32F32` beyond 53 significant bits).
     fn to_f64(self) -> f64;
     /// The gains `(C_k, C_d)` in the step's format, rounded to nearest; `None` when a
-    /// non-zero gain would round to zero or below the state's resolution.
+    /// non-zero gain would round to zero or below the state's resolution, and in
+    /// `I16F16` outside the single-spring region's bounds (`C_k ≥ 4`, `C_d ≥ 2`, a
+    /// negative gain) or for a damping below `2⁻³³`, which its step does not take.
+    ///
+    /// ```
+    /// use stiffspring::{I16F16, Scalar};
+    ///
+    /// assert!(I16F16::gains(3.9, 0.05).is_some());
+    /// assert!(I16F16::gains(4.0, 0.05).is_none());
+    /// ```
     fn gains(stiffness: f64, damping: f64) -> Option<Self::Gains>;
     /// The gains back as `(C_k, C_d)`.
     fn gains_to_f64(gains: &Self::Gains) -> (f64, f64);

@@ -200,6 +200,22 @@ impl<S: Scalar> RawState<S> {
     }
 }
 
+/// The least `k` of a stiffness the lifted step takes: `C_k < 4 = 2^30/2^(32 − 4)`.
+pub(crate) const NARROW_LEAST_STIFFNESS_K: i32 = -3;
+/// The least `k` of a damping the lifted step takes: `C_d < 2`.
+pub(crate) const NARROW_LEAST_DAMPING_K: i32 = -2;
+
+/// Whether the `I16F16` step (`fast::narrow_step`) takes the gains `(mantissa, shift)`:
+/// a stiffness below 4, a damping below 2, each zero or at least `2⁻³³`, neither
+/// negative. `I16F16` refuses any other gains at set-up (`RawGains::new`), so that its
+/// step needs no general product.
+pub(crate) const fn narrow_takes(stiffness: (i64, i32), damping: (i64, i32)) -> bool {
+    const fn takes((m, shift): (i64, i32), least_k: i32) -> bool {
+        m == 0 || (m > 0 && shift - 32 >= least_k && shift - 32 <= 31)
+    }
+    takes(stiffness, NARROW_LEAST_STIFFNESS_K) && takes(damping, NARROW_LEAST_DAMPING_K)
+}
+
 /// A backend's gains ([`Scalar::Gains`]) as the bits of their two factors, accepted as
 /// [`Scalar::gains`] accepts them: the run-time `gains` of every backend is this, so that
 /// the two cannot differ.
@@ -225,9 +241,10 @@ impl<S: Scalar> RawGains<S> {
             // The spring stops for good within |x| < 1/C_k last bits of the state: below
             // the least gain that dead band is wider than a position's last bit. A gain
             // beyond the mantissa's range encodes as zero.
-            FactorForm::Mantissa { .. } => {
+            FactorForm::Mantissa { bits } => {
                 (stiffness != 0.0 && (stiffness.abs() < S::LEAST_GAIN || k.is_zero()))
                     || (damping != 0.0 && d.is_zero())
+                    || (bits == 32 && !narrow_takes((k.mantissa, k.shift), (d.mantissa, d.shift)))
             }
         };
         if lost {

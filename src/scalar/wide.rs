@@ -213,7 +213,7 @@ mod tests {
             };
             let m = if i % 13 == 0 { i32::MAX } else { m };
             let fast = FastGains::narrow((m, shift), (m, shift));
-            assert_eq!(fast.headroom, 1 << 30, "{m} {shift}");
+            assert_eq!(fast.headroom, 1 << 25, "{m} {shift}");
             let f = fast.stiffness;
             let (down, up) = (
                 narrow::mul_shift::<false>(x, m, shift),
@@ -280,6 +280,85 @@ mod tests {
             fast_runs > 100_000 && refusals > 10_000,
             "{fast_runs} {refusals}"
         );
+    }
+
+    #[test]
+    fn lifted_step_is_the_saturating_step_of_the_scaled_state() {
+        use super::super::fast::narrow_step::advance_lifted_in;
+        const MAX: i64 = (1 << 56) - 1;
+        // The state halved together until both are 57-bit integers.
+        let held = |(mut x, mut v): (i64, i64)| {
+            while !(-MAX - 1..=MAX).contains(&x) || !(-MAX - 1..=MAX).contains(&v) {
+                (x, v) = (x >> 1, v >> 1);
+            }
+            (x, v)
+        };
+        use super::super::raw_state::narrow_takes;
+        let general = |(km, ks): (i32, i32), (dm, ds): (i32, i32), x: &mut i64, v: &mut i64| {
+            let u = v.saturating_sub(narrow::mul_shift::<false>(*x, km, ks));
+            *x = x.saturating_add(u);
+            *v = u.saturating_sub(narrow::mul_shift::<true>(u, dm, ds));
+        };
+        let mut next = rng(0x5851_f42d_4c95_7f2d);
+        let (mut within, mut outside) = (0, 0);
+        for i in 0..300_000u32 {
+            // Every gain the narrow step takes: stiffness shifts 29..=63, damping 30..=63
+            // (C_k < 4, C_d < 2, both at least 2^−33), zeros, and the lifts' ends.
+            let gain = |next: &mut dyn FnMut() -> u64, least: i32| {
+                let r = next();
+                if r.is_multiple_of(9) {
+                    (0, 0)
+                } else {
+                    let m = if r % 7 == 1 {
+                        i32::MAX - 1
+                    } else {
+                        (1 << 30) | (r as i32 & 0x3fff_ffff)
+                    };
+                    (m, least + (r >> 40) as i32 % (64 - least))
+                }
+            };
+            let (k, d) = (gain(&mut next, 29), gain(&mut next, 30));
+            assert!(narrow_takes((k.0 as i64, k.1), (d.0 as i64, d.1)));
+            let fast = FastGains::narrow(k, d);
+            let x0 = next() as i64 >> (next() % 64);
+            let v0 = next() as i64 >> (next() % 64);
+            let (x0, v0) = match i % 23 {
+                0 => (i64::MAX, i64::MIN),
+                1 => (MAX, -MAX - 1),
+                2 => (MAX + 1, -MAX - 2),
+                _ => (x0, v0),
+            };
+            let (mut gx, mut gv) = held((x0, v0));
+            if (gx, gv) == (x0, v0) {
+                within += 1;
+            } else {
+                outside += 1;
+            }
+            general(k, d, &mut gx, &mut gv);
+            let mut modes = [(x0, v0); 3];
+            advance_lifted_in::<{ mode::NATIVE }>(
+                &fast,
+                (k.1, d.1),
+                &mut modes[0].0,
+                &mut modes[0].1,
+            );
+            advance_lifted_in::<{ mode::SCALE }>(
+                &fast,
+                (k.1, d.1),
+                &mut modes[1].0,
+                &mut modes[1].1,
+            );
+            advance_lifted_in::<{ mode::SMALL }>(
+                &fast,
+                (k.1, d.1),
+                &mut modes[2].0,
+                &mut modes[2].1,
+            );
+            for (n, got) in modes.iter().enumerate() {
+                assert_eq!(*got, (gx, gv), "mode {n}: {k:?} {d:?} {x0} {v0}");
+            }
+        }
+        assert!(within > 150_000 && outside > 30_000, "{within} {outside}");
     }
 
     #[test]

@@ -493,6 +493,11 @@ pub struct Kept {
     i32f32: bool,
 }
 
+/// The bits the I16F16 step scales its state `(x, ũ)` into before each step (halving both
+/// together): 2^16 units of a Q16.16 position, which the offset between two positions
+/// stays within.
+pub const I16F16_HELD_BITS: u32 = 57;
+
 impl Kept {
     /// Guard bits of the state: 24 (Q24.40) for I16F16, 32 (Q64.64) for I32F32.
     pub fn guard(t: Fixed) -> u32 {
@@ -564,6 +569,16 @@ impl Kept {
 impl Stepper for Kept {
     #[inline(always)]
     fn step(&mut self) {
+        if !self.i32f32 {
+            // The I16F16 step halves its state until both are 57-bit integers (2^16
+            // units) before it steps: within them it needs no general product for gains
+            // up to C_k < 4.
+            while sat(self.x, I16F16_HELD_BITS) != self.x || sat(self.v, I16F16_HELD_BITS) != self.v
+            {
+                self.x >>= 1;
+                self.v >>= 1;
+            }
+        }
         let u = sat(
             self.v - self.term(self.mk, self.x, self.sk, self.rk),
             self.state_bits,
