@@ -6,7 +6,7 @@
 //! that a gain of up to 4 has the fast form, and scales a state beyond `2^16` units
 //! down into that range: `I16F16` links no general product.
 
-use super::raw_state::{NARROW_LEAST_DAMPING_K, NARROW_LEAST_STIFFNESS_K};
+use super::raw_state::narrow_takes;
 
 /// A gain prepared at set-up for the fast path of the step, [`narrow_step::product`].
 ///
@@ -131,22 +131,25 @@ impl FastGains<i32> {
     /// then runs wherever the state is within its headroom. A gain of `k < 2`
     /// (`C ≥ 2⁻³`: the damping of a UI spring at 60 Hz) is stored in the form of `k = 2`
     /// and the gains' headroom is 0: the lifted step ([`narrow_step::advance_lifted`]),
-    /// which multiplies the state by `2^(2 − k)` first ([`narrow_step::lift`]), takes it. The lifted step takes any stiffness `C_k < 4` (`k ≥ −3`) and damping
-    /// `C_d < 2` (`k ≥ −2`), the exact single-spring region's bounds; a gain outside
-    /// them, negative, or below `2⁻³³` (`k > 31`) has no form, and
-    /// [`narrow_takes`](super::raw_state::narrow_takes) refuses it at set-up.
+    /// which multiplies the state by `2^(2 − k)` first ([`narrow_step::lift`]), takes
+    /// it. Gains that [`narrow_takes`] refuses (`C_k ≥ 4`, `C_d ≥ 2`, negative, or below
+    /// `2⁻³³`) have no form; set-up refuses them too.
     pub(crate) fn narrow(stiffness: (i32, i32), damping: (i32, i32)) -> Self {
-        // The factor and whether it is lifted.
-        let factor = |(m, shift): (i32, i32), least_k: i32| -> Option<(FastFactor<i32>, bool)> {
+        if !narrow_takes(
+            (stiffness.0 as i64, stiffness.1),
+            (damping.0 as i64, damping.1),
+        ) {
+            return Self::NONE;
+        }
+        // The factor (`narrow_takes` bounds its `k` to 31 and, lifted, to 2) and whether
+        // it is lifted.
+        let factor = |(m, shift): (i32, i32)| -> (FastFactor<i32>, bool) {
             // C = 0: any form gives 0; take k = 2.
-            let (m, k) = if m == 0 { (0, 2) } else { (m, shift - 32) };
-            if m < 0 || !(least_k..=31).contains(&k) {
-                return None;
-            }
+            let k = if m == 0 { 2 } else { shift - 32 };
+            let lifted = k < 2;
             // The lifted step multiplies the state by 2^(2 − k) first (`narrow_step::lift`).
             let k = k.max(2) as u32;
-            let lifted = m != 0 && shift - 32 < 2;
-            Some((
+            (
                 FastFactor {
                     mantissa: m,
                     bias: ((1u32 << k) - 1) as i32,
@@ -156,18 +159,17 @@ impl FastGains<i32> {
                     halves: [m as u16, (m >> 16) as u16],
                 },
                 lifted,
-            ))
+            )
         };
-        match (
-            factor(stiffness, NARROW_LEAST_STIFFNESS_K),
-            factor(damping, NARROW_LEAST_DAMPING_K),
-        ) {
-            (Some((stiffness, lifted_k)), Some((damping, lifted_d))) => FastGains {
-                stiffness,
-                damping,
-                headroom: if lifted_k || lifted_d { 0 } else { 1 << 25 },
+        let ((stiffness, lifted_k), (damping, lifted_d)) = (factor(stiffness), factor(damping));
+        FastGains {
+            stiffness,
+            damping,
+            headroom: if lifted_k || lifted_d {
+                0
+            } else {
+                narrow_step::RANGE
             },
-            _ => Self::NONE,
         }
     }
 }
@@ -353,14 +355,23 @@ pub(crate) mod narrow_step {
         product_in::<AWAY, MODE>(lift_in::<MODE>(x, j), f)
     }
 
-    /// Whether `x` and `ũ` are both 57-bit integers, `−2^56 ≤ s < 2^56` (`2^16` units of
-    /// an `I16F16` position, which the offset between two positions stays within): the
-    /// states the lifted step takes. `sₕ + 2^24 < 2^25` (unsigned) for both at once, as
-    /// in [`advance`].
+    /// The bound of [`range_probe`] for the states every `I16F16` step takes: both
+    /// `x` and `ũ` 57-bit integers, `−2^56 ≤ s < 2^56` (`2^16` units of an `I16F16`
+    /// position, which the offset between two positions stays within). The fast
+    /// step's headroom where it takes the gains.
+    pub(crate) const RANGE: i32 = 1 << 25;
+
+    /// `sₕ + 2^24` of `x` and of `ũ` (unsigned) at once, with an `or`: below [`RANGE`]
+    /// exactly when both are within `−2^56 ≤ s < 2^56`.
+    #[inline(always)]
+    fn range_probe(x: i64, v: i64) -> u32 {
+        ((x >> 32) as u32).wrapping_add(1 << 24) | ((v >> 32) as u32).wrapping_add(1 << 24)
+    }
+
+    /// Whether the lifted step takes `(x, ũ)` as it is ([`RANGE`]).
     #[inline(always)]
     pub(crate) fn liftable(x: i64, v: i64) -> bool {
-        (((x >> 32) as u32).wrapping_add(1 << 24) | ((v >> 32) as u32).wrapping_add(1 << 24))
-            < 1 << 25
+        range_probe(x, v) < RANGE as u32
     }
 
     /// `(x, ũ)` halved together (rounded toward −∞) until [`liftable`]: the same
@@ -420,10 +431,7 @@ pub(crate) mod narrow_step {
     #[inline(always)]
     pub(crate) fn advance(g: &FastGains<i32>, x: &mut i64, v: &mut i64) -> bool {
         let (x0, v0) = (*x, *v);
-        // −2^56 ≤ s < 2^56 ⟺ sₕ + 2^24 < 2^25 (unsigned); both at once with an `or`.
-        let probe =
-            ((x0 >> 32) as u32).wrapping_add(1 << 24) | ((v0 >> 32) as u32).wrapping_add(1 << 24);
-        if probe >= g.headroom as u32 {
+        if range_probe(x0, v0) >= g.headroom as u32 {
             return false;
         }
         let u = v0.wrapping_sub(product::<false>(x0, &g.stiffness));

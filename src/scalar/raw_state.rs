@@ -201,9 +201,9 @@ impl<S: Scalar> RawState<S> {
 }
 
 /// The least `k` of a stiffness the lifted step takes: `C_k < 4 = 2^30/2^(32 − 4)`.
-pub(crate) const NARROW_LEAST_STIFFNESS_K: i32 = -3;
+const NARROW_LEAST_STIFFNESS_K: i32 = -3;
 /// The least `k` of a damping the lifted step takes: `C_d < 2`.
-pub(crate) const NARROW_LEAST_DAMPING_K: i32 = -2;
+const NARROW_LEAST_DAMPING_K: i32 = -2;
 
 /// Whether the `I16F16` step (`fast::narrow_step`) takes the gains `(mantissa, shift)`:
 /// a stiffness below 4, a damping below 2, each zero or at least `2⁻³³`, neither

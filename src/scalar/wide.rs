@@ -213,7 +213,7 @@ mod tests {
             };
             let m = if i % 13 == 0 { i32::MAX } else { m };
             let fast = FastGains::narrow((m, shift), (m, shift));
-            assert_eq!(fast.headroom, 1 << 25, "{m} {shift}");
+            assert_eq!(fast.headroom, narrow_step::RANGE, "{m} {shift}");
             let f = fast.stiffness;
             let (down, up) = (
                 narrow::mul_shift::<false>(x, m, shift),
